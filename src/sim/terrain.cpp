@@ -1,0 +1,1 @@
+#include "rownav/sim/terrain.hpp"
