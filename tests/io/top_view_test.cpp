@@ -1,0 +1,172 @@
+#include "rownav/io/top_view.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "rownav/core/line2.hpp"
+#include "rownav/io/png_canvas.hpp"
+#include "rownav/io/svg_canvas.hpp"
+
+namespace rownav::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Straight or gently curved rows along x, with vines, posts, end posts and weeds.
+sim::Field make_field(int n_rows, double length, double spacing, double bend, unsigned seed) {
+  sim::Field f;
+  f.row_spacing = spacing;
+  f.headland_width = 4.0;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto lateral = [&](int k, double x) { return k * spacing + bend * std::sin(x / 12.0); };
+  for (int k = 0; k < n_rows; ++k) {
+    sim::Row r;
+    r.id = k;
+    for (double x = 0.0; x <= length + 1e-9; x += 2.0) r.polyline.emplace_back(x, lateral(k, x));
+    r.half_width = 0.35;
+    f.rows.push_back(r);
+    for (double x = 0.6; x < length; x += 1.2)
+      f.plants.push_back({{x, lateral(k, x)}, 0.06, 1.6, k, sim::PlantKind::vine});
+    for (double x = 6.0; x < length; x += 6.0)
+      f.plants.push_back({{x, lateral(k, x)}, 0.05, 1.9, k, sim::PlantKind::post});
+    for (double x : {0.0, length})
+      f.plants.push_back({{x, lateral(k, x)}, 0.08, 2.0, k, sim::PlantKind::end_post});
+  }
+  for (int i = 0; i < 12 * n_rows; ++i) {
+    const double x = u(rng) * length, y = (u(rng) * (n_rows - 1)) * spacing;
+    f.plants.push_back({{x, y + bend * std::sin(x / 12.0)}, 0.05, 0.2, -1, sim::PlantKind::weed});
+  }
+  return f;
+}
+
+/// Planar scan against the canopy bands (ray marching), with range noise.
+core::Scan2D fake_scan(const sim::Field& f, const core::Pose2& T_world_lidar, unsigned seed) {
+  core::Scan2D s;
+  s.angle_min = -M_PI;
+  s.angle_increment = M_PI / 360.0;
+  s.range_min = 0.3;
+  s.range_max = 15.0;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.03);
+  for (int i = 0; i < 720; ++i) {
+    float hit = std::numeric_limits<float>::infinity();
+    const Eigen::Vector2d dir(std::cos(s.angle(i)), std::sin(s.angle(i)));
+    for (double r = s.range_min; r < s.range_max && !std::isfinite(hit); r += 0.05) {
+      const Eigen::Vector2d p = T_world_lidar * (r * dir);
+      for (const auto& row : f.rows)
+        for (std::size_t j = 1; j < row.polyline.size(); ++j)
+          if (core::Segment2{row.polyline[j - 1], row.polyline[j]}.distance(p) < row.half_width)
+            hit = static_cast<float>(r + noise(rng));
+    }
+    s.ranges.push_back(hit);
+  }
+  return s;
+}
+
+TEST(TopView, CorridorCentreIsTheMidline) {
+  sim::Row a, b;
+  a.polyline = {{0, 0}, {10, 0}};
+  b.polyline = {{10, 2}, {4, 2}, {0, 2}};  // opposite direction, uneven vertices
+  const auto mid = corridor_centre(a, b, 11);
+  ASSERT_EQ(mid.size(), 11u);
+  for (std::size_t i = 0; i < mid.size(); ++i) {
+    EXPECT_NEAR(mid[i].y(), 1.0, 1e-12);
+    EXPECT_NEAR(mid[i].x(), static_cast<double>(i), 1e-12);
+  }
+}
+
+TEST(TopView, ViridisEndsAndClamps) {
+  EXPECT_EQ(viridis(0.0), Color::hex("#440154"));
+  EXPECT_EQ(viridis(1.0), Color::hex("#fde725"));
+  EXPECT_EQ(viridis(7.0), Color::hex("#fde725"));
+  EXPECT_EQ(viridis(std::nan("")), Color::hex("#440154"));
+  EXPECT_GT(viridis(0.75).g, viridis(0.25).g);  // gets lighter
+}
+
+TEST(TopView, ThreeRowFieldBothFormats) {
+  const sim::Field f = make_field(3, 20.0, 2.5, 0.0, 1);
+  TopViewOptions o;
+  o.title = "three rows";
+  for (const char* name : {"rownav_three_rows.svg", "rownav_three_rows.png"}) {
+    const fs::path out = fs::temp_directory_path() / name;
+    auto c = make_canvas(out);
+    draw_field(*c, f, o);
+    // Window: x in [-4, 24], y in [-4, 9] at 20 px/m + margins 24 / 200 and 48 / 74.
+    EXPECT_EQ(c->width(), 28 * 20 + 24 + 200);
+    EXPECT_EQ(c->height(), 13 * 20 + 48 + 74);
+    c->save(out);
+    ASSERT_GT(fs::file_size(out), 1000u);
+  }
+  const RgbaImage img = read_png(fs::temp_directory_path() / "rownav_three_rows.png");
+  auto c = make_canvas("x.png");
+  draw_field(*c, f, o);
+  const auto at = [&](double x, double y) {
+    const Eigen::Vector2d p = c->to_pixel({x, y});
+    return img.at(static_cast<int>(p.x()), static_cast<int>(p.y()));
+  };
+  EXPECT_EQ(at(-2.0, -2.0), Color::hex("#efe6d2"));  // soil in the headland
+  const Color canopy = at(3.0, 2.5 + 0.25);         // on the canopy band, off the centre line
+  EXPECT_GT(canopy.g, canopy.r);
+  EXPECT_GT(canopy.g, canopy.b);
+  const Color corridor = at(3.1, 1.25);  // dashed corridor centre: blue or soil
+  EXPECT_TRUE(corridor.b > corridor.r || corridor == Color::hex("#efe6d2"));
+}
+
+TEST(TopView, SvgHasLayersAndOneCirclePerPlant) {
+  const sim::Field f = make_field(3, 20.0, 2.5, 0.0, 1);
+  SvgCanvas c;
+  TopViewOptions o;
+  o.posts = false;
+  draw_field(c, f, o);
+  const std::string doc = c.document();
+  for (const char* g : {"id=\"field\"", "id=\"canopy\"", "id=\"corridor_centres\"",
+                        "id=\"legend\"", "id=\"scale_bar\"", "id=\"axes\""})
+    EXPECT_NE(doc.find(g), std::string::npos) << g;
+  const auto posts = std::count_if(f.plants.begin(), f.plants.end(), [](const sim::Plant& p) {
+    return p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post;
+  });
+  const auto field_part = doc.substr(doc.find("id=\"plants\""), doc.find("id=\"legend\"") - doc.find("id=\"plants\""));
+  std::size_t circles = 0;
+  for (auto p = field_part.find("<circle"); p != std::string::npos; p = field_part.find("<circle", p + 1)) ++circles;
+  EXPECT_EQ(circles, f.plants.size() - static_cast<std::size_t>(posts));
+}
+
+TEST(TopView, DemoVineyardWithScanCloudAndRobot) {
+  const sim::Field f = make_field(6, 40.0, 2.5, 0.6, 7);
+  const core::Pose2 T_world_base(12.0, 3.75 + 0.6 * std::sin(1.0), 0.08);
+  const core::Pose2 T_world_lidar = T_world_base * core::Pose2(0.3, 0.0, 0.0);
+  const core::Scan2D scan = fake_scan(f, T_world_lidar, 3);
+  core::PointCloud cloud;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> z(-0.6f, 1.0f);  // lidar 0.8 m above the ground
+  for (const auto& p : scan.to_points())
+    for (int k = 0; k < 6; ++k) cloud.points.push_back({p.x() * 1.02f, p.y() * 1.02f, z(rng)});
+  Eigen::Isometry3d T_wl = T_world_lidar.to_isometry();
+  T_wl.translation().z() = 0.8;
+  const Color red = Color::hex("#d62728"), orange = Color::hex("#ff7f0e");
+  TopViewOptions o;
+  o.title = "rownav demo: 6-row vineyard, simulated scan";
+  o.extra_legend = {{"robot", robot_legend_style(red)},
+                    {"LiDAR scan", scan_legend_style(orange)},
+                    {"path", {Color::hex("#7b3294"), {}, 2.0}}};
+  const fs::path out = fs::temp_directory_path() / "render_demo.png";
+  auto c = make_canvas(out);
+  draw_field(*c, f, o);
+  draw_cloud(*c, cloud, T_wl, 0.0, 1.8);
+  draw_scan(*c, scan, T_world_lidar, orange);
+  std::vector<Eigen::Vector2d> path;
+  for (double x = 0.0; x <= 12.0; x += 0.5) path.emplace_back(x, 3.75 + 0.6 * std::sin(x / 12.0));
+  draw_path(*c, path, {Color::hex("#7b3294"), {}, 2.0});
+  draw_robot(*c, T_world_base, 1.3, 0.8, red);
+  c->save(out);
+  const RgbaImage img = read_png(out);
+  EXPECT_EQ(img.width, c->width());
+  EXPECT_GT(std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return std::isfinite(r); }), 200);
+}
+
+}  // namespace
+}  // namespace rownav::io
