@@ -70,22 +70,31 @@ void draw_series(Canvas& c, const Series& s) {
   flush();
 }
 
-void draw_axes(Canvas& c, const std::vector<double>& xt, const std::vector<double>& yt) {
-  const Eigen::AlignedBox2d w = c.world_box(), p = c.plot_rect();
+void draw_grid(Canvas& c, const std::vector<double>& xt, const std::vector<double>& yt) {
+  const Eigen::AlignedBox2d w = c.world_box();
+  const double ys = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
+  for (double x : xt) c.line({x, w.min().y()}, {x, w.max().y()}, {kGrid, {}, 1.0});
+  for (double y : yt) {
+    const bool zero = std::abs(y) < 1e-9 * ys;
+    c.line({w.min().x(), y}, {w.max().x(), y}, {zero ? Color::hex("#9a9a9a") : kGrid, {}, 1.0});
+  }
+}
+
+void draw_ticks(Canvas& c, const std::vector<double>& xt, const std::vector<double>& yt) {
+  const Eigen::AlignedBox2d p = c.plot_rect();
   const double xs = xt.size() > 1 ? xt[1] - xt[0] : 1.0, ys = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
+  c.begin_group("ticks");
   for (double x : xt) {
-    c.line({x, w.min().y()}, {x, w.max().y()}, {kGrid, {}, 1.0});
     const double px = c.to_pixel({x, 0}).x();
     c.line_px({px, p.max().y()}, {px, p.max().y() + 5}, {kInk, {}, 1.0});
     c.text_px({px, p.max().y() + 15}, tick_label(x, xs), 12, kInk, Align::centre);
   }
   for (double y : yt) {
-    const bool zero = std::abs(y) < 1e-12 * ys;
-    c.line({w.min().x(), y}, {w.max().x(), y}, {zero ? Color::hex("#9a9a9a") : kGrid, {}, 1.0});
     const double py = c.to_pixel({0, y}).y();
     c.line_px({p.min().x() - 5, py}, {p.min().x(), py}, {kInk, {}, 1.0});
     c.text_px({p.min().x() - 8, py}, tick_label(y, ys), 12, kInk, Align::right);
   }
+  c.end_group();
 }
 
 void draw_plot_legend(Canvas& c, const std::vector<Series>& series, const PlotOptions& o) {
@@ -156,12 +165,14 @@ void draw_plot(Canvas& c, const std::vector<Series>& series, const PlotOptions& 
   for (const auto& [a, b] : o.bands)
     c.polygon({{a, yr.first}, {b, yr.first}, {b, yr.second}, {a, yr.second}},
               {{}, kBand, 0.0, true});
-  draw_axes(c, nice_ticks(xr.first, xr.second, std::max(2, o.width_px / 110)),
-            nice_ticks(yr.first, yr.second, std::max(2, o.height_px / 70)));
+  const auto xt = nice_ticks(xr.first, xr.second, std::max(2, o.width_px / 110));
+  const auto yt = nice_ticks(yr.first, yr.second, std::max(2, o.height_px / 70));
+  draw_grid(c, xt, yt);
   for (const auto& s : series) draw_series(c, s);
   c.end_group();
+  draw_ticks(c, xt, yt);
   c.rect_px(plot.min(), plot.max(), {Color::hex("#555555"), {}, 1.0});
-  if (!o.title.empty()) c.text_px({left, 20}, o.title, 16, kInk);
+  if (!o.title.empty()) c.text_px({left, 20}, o.title, 18, kInk);
   if (!o.x_label.empty())
     c.text_px({plot.center().x(), o.height_px - 16.0}, o.x_label, 13, kInk, Align::centre);
   if (!o.y_label.empty())
