@@ -97,6 +97,27 @@ void draw_ticks(Canvas& c, const std::vector<double>& xt, const std::vector<doub
   c.end_group();
 }
 
+/// Top-left of the legend box: the plot corner whose box covers the fewest data points.
+Eigen::Vector2d legend_corner(const Canvas& c, const std::vector<Series>& series,
+                              const Eigen::Vector2d& size) {
+  const Eigen::AlignedBox2d p = c.plot_rect();
+  const double l = p.min().x() + 8, r = p.max().x() - 8 - size.x();
+  const double t = p.min().y() + 8, b = p.max().y() - 8 - size.y();
+  Eigen::Vector2d best(r, t);  // top-right wins ties
+  std::size_t best_count = std::numeric_limits<std::size_t>::max();
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(r, t), Eigen::Vector2d(l, t),
+                                       Eigen::Vector2d(r, b), Eigen::Vector2d(l, b)}) {
+    const Eigen::AlignedBox2d box(corner, corner + size);
+    std::size_t n = 0;
+    for (const auto& s : series)
+      for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
+        n += std::isfinite(s.x[i]) && std::isfinite(s.y[i]) &&
+             box.contains(c.to_pixel({s.x[i], s.y[i]}));
+    if (n < best_count) best_count = n, best = corner;
+  }
+  return best;
+}
+
 void draw_plot_legend(Canvas& c, const std::vector<Series>& series, const PlotOptions& o) {
   std::vector<std::pair<std::string, Style>> e;
   for (const auto& s : series)
@@ -105,9 +126,8 @@ void draw_plot_legend(Canvas& c, const std::vector<Series>& series, const PlotOp
   if (e.empty()) return;
   double text_w = 0.0;
   for (const auto& [label, s] : e) text_w = std::max(text_w, c.text_width(label, 12));
-  const Eigen::AlignedBox2d p = c.plot_rect();
-  const Eigen::Vector2d hi(p.max().x() - 8, p.min().y() + 8 + 18.0 * e.size() + 8);
-  const Eigen::Vector2d lo(hi.x() - text_w - 50, p.min().y() + 8);
+  const Eigen::Vector2d size(text_w + 50, 18.0 * e.size() + 16);
+  const Eigen::Vector2d lo = legend_corner(c, series, size), hi = lo + size;
   c.begin_group("legend");
   c.rect_px(lo, hi, {Color::hex("#c8c8c8"), Color::hex("#ffffff").with_alpha(0.88), 1.0, true});
   for (std::size_t i = 0; i < e.size(); ++i) {
