@@ -67,6 +67,25 @@ core::Scan2D fake_scan(const sim::Field& f, const core::Pose2& T_world_lidar, un
   return s;
 }
 
+/// 3D cloud in the lidar frame (0.8 m above the ground): canopy returns behind every scan hit
+/// at random heights, ground rings in front of them.
+core::PointCloud fake_cloud(const core::Scan2D& scan, unsigned seed) {
+  core::PointCloud cloud;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (std::size_t i = 0; i < scan.ranges.size(); i += 2) {
+    const float a = static_cast<float>(scan.angle(i)), c = std::cos(a), s = std::sin(a);
+    const float reach = scan.valid(i) ? scan.ranges[i] : 10.0f;
+    for (int k = 0; k < 5 && scan.valid(i); ++k) {
+      const float r = reach + 0.5f * u(rng), z = -0.6f + 1.6f * u(rng);
+      cloud.points.push_back({r * c, r * s, z});
+    }
+    for (float r = 1.5f; r < std::min(reach, 10.0f); r += 0.8f)
+      cloud.points.push_back({r * c, r * s, -0.8f + 0.04f * u(rng)});
+  }
+  return cloud;
+}
+
 TEST(TopView, CorridorCentreIsTheMidline) {
   sim::Row a, b;
   a.polyline = {{0, 0}, {10, 0}};
@@ -140,29 +159,34 @@ TEST(TopView, DemoVineyardWithScanCloudAndRobot) {
   const core::Pose2 T_world_base(12.0, 3.75 + 0.6 * std::sin(1.0), 0.08);
   const core::Pose2 T_world_lidar = T_world_base * core::Pose2(0.3, 0.0, 0.0);
   const core::Scan2D scan = fake_scan(f, T_world_lidar, 3);
-  core::PointCloud cloud;
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<float> z(-0.6f, 1.0f);  // lidar 0.8 m above the ground
-  for (const auto& p : scan.to_points())
-    for (int k = 0; k < 6; ++k) cloud.points.push_back({p.x() * 1.02f, p.y() * 1.02f, z(rng)});
+  const core::PointCloud cloud = fake_cloud(scan, 5);
   Eigen::Isometry3d T_wl = T_world_lidar.to_isometry();
   T_wl.translation().z() = 0.8;
   const Color red = Color::hex("#d62728"), orange = Color::hex("#ff7f0e");
+  const Color magenta = Color::hex("#c51b7d");
   TopViewOptions o;
   o.title = "rownav demo: 6-row vineyard, simulated scan";
   o.extra_legend = {{"robot", robot_legend_style(red)},
                     {"LiDAR scan", scan_legend_style(orange)},
-                    {"path", {Color::hex("#7b3294"), {}, 2.0}}};
-  const fs::path out = fs::temp_directory_path() / "render_demo.png";
-  auto c = make_canvas(out);
-  draw_field(*c, f, o);
-  draw_cloud(*c, cloud, T_wl, 0.0, 1.8);
-  draw_scan(*c, scan, T_world_lidar, orange);
+                    {"path", {magenta, {}, 2.0}}};
   std::vector<Eigen::Vector2d> path;
   for (double x = 0.0; x <= 12.0; x += 0.5) path.emplace_back(x, 3.75 + 0.6 * std::sin(x / 12.0));
-  draw_path(*c, path, {Color::hex("#7b3294"), {}, 2.0});
-  draw_robot(*c, T_world_base, 1.3, 0.8, red);
-  c->save(out);
+  const auto render = [&](const fs::path& out) {
+    auto c = make_canvas(out);
+    draw_field(*c, f, o);
+    draw_cloud(*c, cloud, T_wl, 0.0, 1.8);
+    draw_scan(*c, scan, T_world_lidar, orange, 1.4);
+    draw_path(*c, path, {magenta, {}, 2.0});
+    draw_robot(*c, T_world_base, 1.3, 0.8, red);
+    c->save(out);
+    return c;
+  };
+  const fs::path out = fs::temp_directory_path() / "render_demo.png";
+  const auto c = render(out);
+  o.window = Eigen::AlignedBox2d(Eigen::Vector2d(5, -0.5), Eigen::Vector2d(21, 8.5));
+  o.pixels_per_metre = 50;
+  render(fs::temp_directory_path() / "render_demo_zoom.svg");
+  render(fs::temp_directory_path() / "render_demo_zoom.png");
   const RgbaImage img = read_png(out);
   EXPECT_EQ(img.width, c->width());
   EXPECT_GT(std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return std::isfinite(r); }), 200);
