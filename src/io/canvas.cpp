@@ -63,8 +63,8 @@ void Canvas::set_view(const Eigen::AlignedBox2d& world, double ppm, const Margin
   const Eigen::AlignedBox2d plot(Eigen::Vector2d(m.left, m.top),
                                  Eigen::Vector2d(m.left + w, m.top + h));
   // Keep the scale exact: the world box grows to fill the rounded-up pixel box.
-  const Eigen::AlignedBox2d grown(world.min(),
-                                  Eigen::Vector2d(world.min().x() + w / ppm, world.min().y() + h / ppm));
+  const Eigen::AlignedBox2d grown(
+      world.min(), Eigen::Vector2d(world.min().x() + w / ppm, world.min().y() + h / ppm));
   set_view_rect(grown, plot, m.left + static_cast<int>(w) + m.right,
                 m.top + static_cast<int>(h) + m.bottom);
 }
@@ -144,8 +144,7 @@ std::unique_ptr<Canvas> make_canvas(const std::filesystem::path& out) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".svg") return std::make_unique<SvgCanvas>();
   if (ext == ".png") return std::make_unique<PngCanvas>();
-  throw InputError(out.string(), "",
-                   "unknown picture format '" + ext + "' (want .svg or .png)");
+  throw InputError(out.string(), "", "unknown picture format '" + ext + "' (want .svg or .png)");
 }
 
 }  // namespace rownav::io

@@ -106,7 +106,7 @@ Eigen::Vector2d legend_corner(const Canvas& c, const std::vector<Series>& series
   Eigen::Vector2d best(r, t);  // top-right wins ties
   std::size_t best_count = std::numeric_limits<std::size_t>::max();
   for (const Eigen::Vector2d& corner : {Eigen::Vector2d(r, t), Eigen::Vector2d(l, t),
-                                       Eigen::Vector2d(r, b), Eigen::Vector2d(l, b)}) {
+                                        Eigen::Vector2d(r, b), Eigen::Vector2d(l, b)}) {
     const Eigen::AlignedBox2d box(corner, corner + size);
     std::size_t n = 0;
     for (const auto& s : series)

@@ -37,8 +37,8 @@ Mask make_mask(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Box& 
 double segment_distance(double px, double py, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const double dx = b.x() - a.x(), dy = b.y() - a.y();
   const double l2 = dx * dx + dy * dy;
-  const double s = l2 > 0.0 ? std::clamp(((px - a.x()) * dx + (py - a.y()) * dy) / l2, 0.0, 1.0)
-                            : 0.0;
+  const double s =
+      l2 > 0.0 ? std::clamp(((px - a.x()) * dx + (py - a.y()) * dy) / l2, 0.0, 1.0) : 0.0;
   return std::hypot(px - (a.x() + s * dx), py - (a.y() + s * dy));
 }
 
@@ -109,7 +109,8 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> dashes(
     while (s < len && len > 0.0) {
       const bool drawing = phase < on;
       const double step = std::min(len - s, (drawing ? on : on + off) - phase);
-      if (drawing) out.emplace_back(pts[i - 1] + d * (s / len), pts[i - 1] + d * ((s + step) / len));
+      if (drawing)
+        out.emplace_back(pts[i - 1] + d * (s / len), pts[i - 1] + d * ((s + step) / len));
       s += step;
       phase = std::fmod(phase + step, on + off);
     }
@@ -143,7 +144,9 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> bounds(const std::vector<Eigen::Vect
   return {lo.array() - pad, hi.array() + pad};
 }
 
-int font_scale(double size_px) { return std::max(1, static_cast<int>(std::lround(size_px / 11.0))); }
+int font_scale(double size_px) {
+  return std::max(1, static_cast<int>(std::lround(size_px / 11.0)));
+}
 
 }  // namespace
 
@@ -154,8 +157,7 @@ void PngCanvas::resize(int width_px, int height_px) {
   clips_.assign(1, Box(Eigen::Vector2i(0, 0), Eigen::Vector2i(width_px, height_px)));
 }
 
-void PngCanvas::stroke_path(const std::vector<Eigen::Vector2d>& pts, const Style& s,
-                            bool closed) {
+void PngCanvas::stroke_path(const std::vector<Eigen::Vector2d>& pts, const Style& s, bool closed) {
   if (pts.size() < 2 || s.stroke_width_px <= 0.0 || s.stroke.a == 0 || clips_.empty()) return;
   std::vector<Eigen::Vector2d> path = pts;
   if (closed) path.push_back(pts.front());
@@ -174,8 +176,7 @@ void PngCanvas::line_px(const Eigen::Vector2d& a, const Eigen::Vector2d& b, cons
   stroke_path({a, b}, s, false);
 }
 
-void PngCanvas::polyline_px(const std::vector<Eigen::Vector2d>& pts, const Style& s,
-                            bool closed) {
+void PngCanvas::polyline_px(const std::vector<Eigen::Vector2d>& pts, const Style& s, bool closed) {
   stroke_path(pts, s, closed);
 }
 
@@ -230,7 +231,8 @@ void PngCanvas::text_px(const Eigen::Vector2d& p, const std::string& text, doubl
         for (int dy = 0; dy < s; ++dy)
           for (int dx = 0; dx < s; ++dx) {
             const int x = static_cast<int>(std::lround(vertical ? p.x() + v + dy : p.x() + u + dx));
-            const int y = static_cast<int>(std::lround(vertical ? p.y() - u - dx - 1 : p.y() + v + dy));
+            const int y =
+                static_cast<int>(std::lround(vertical ? p.y() - u - dx - 1 : p.y() + v + dy));
             if (x >= clip.min().x() && x < clip.max().x() && y >= clip.min().y() &&
                 y < clip.max().y())
               blend(image_, x, y, color, 1.0);

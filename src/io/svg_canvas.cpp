@@ -60,11 +60,20 @@ std::string escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -73,8 +82,8 @@ std::string escape(const std::string& text) {
 }  // namespace
 
 void SvgCanvas::resize(int width_px, int height_px) {
-  body_ = "<rect width=\"" + std::to_string(width_px) + "\" height=\"" +
-          std::to_string(height_px) + "\" fill=\"#ffffff\"/>\n";
+  body_ = "<rect width=\"" + std::to_string(width_px) + "\" height=\"" + std::to_string(height_px) +
+          "\" fill=\"#ffffff\"/>\n";
   open_groups_ = 0;
 }
 
@@ -83,8 +92,7 @@ void SvgCanvas::line_px(const Eigen::Vector2d& a, const Eigen::Vector2d& b, cons
            "\" y2=\"" + num(b.y()) + "\"" + stroke_attrs(s) + "/>\n";
 }
 
-void SvgCanvas::polyline_px(const std::vector<Eigen::Vector2d>& pts, const Style& s,
-                            bool closed) {
+void SvgCanvas::polyline_px(const std::vector<Eigen::Vector2d>& pts, const Style& s, bool closed) {
   if (pts.size() < 2) return;
   body_ += std::string(closed ? "<polygon" : "<polyline") + " points=\"" + points_attr(pts) +
            "\" fill=\"none\"" + stroke_attrs(s) + "/>\n";
@@ -142,8 +150,8 @@ void SvgCanvas::end_group() {
 std::string SvgCanvas::document() const {
   std::string doc = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   doc += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width()) +
-         "\" height=\"" + std::to_string(height()) + "\" viewBox=\"0 0 " +
-         std::to_string(width()) + " " + std::to_string(height()) +
+         "\" height=\"" + std::to_string(height()) + "\" viewBox=\"0 0 " + std::to_string(width()) +
+         " " + std::to_string(height()) +
          "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n";
   doc += body_;
   for (int i = 0; i < open_groups_; ++i) doc += "</g>\n";

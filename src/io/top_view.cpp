@@ -25,9 +25,12 @@ constexpr double kLegendRow = 20;   // [px] legend line height
 
 Color plant_colour(sim::PlantKind k) {
   switch (k) {
-    case sim::PlantKind::tree: return Color::hex("#2d6a1f");
-    case sim::PlantKind::crop: return Color::hex("#4caf50");
-    default: return Color::hex("#2f7d32");  // vine
+    case sim::PlantKind::tree:
+      return Color::hex("#2d6a1f");
+    case sim::PlantKind::crop:
+      return Color::hex("#4caf50");
+    default:
+      return Color::hex("#2f7d32");  // vine
   }
 }
 
@@ -38,7 +41,9 @@ Style stroked(Color stroke, double width, bool dashed = false) {
   return {stroke, {}, width, false, dashed};
 }
 
-double legend_height(std::size_t n) { return 16.0 + kLegendRow * static_cast<double>(n); }
+double legend_height(std::size_t n) {
+  return 16.0 + kLegendRow * static_cast<double>(n);
+}
 
 /// Largest 1 / 2 / 5 x 10^k not above x.
 double round_down_nice(double x) {
@@ -153,8 +158,12 @@ std::vector<LegendEntry> field_legend(const TopViewOptions& o, sim::FieldKind ki
   return e;
 }
 
-Style robot_legend_style(Color color) { return filled(color.with_alpha(0.3), color, 2.0); }
-Style scan_legend_style(Color color) { return filled(color); }
+Style robot_legend_style(Color color) {
+  return filled(color.with_alpha(0.3), color, 2.0);
+}
+Style scan_legend_style(Color color) {
+  return filled(color);
+}
 
 void draw_field(Canvas& c, const sim::Field& field, const TopViewOptions& o) {
   Eigen::AlignedBox2d window;
@@ -162,7 +171,8 @@ void draw_field(Canvas& c, const sim::Field& field, const TopViewOptions& o) {
     window = *o.window;
   } else {
     window = field.row_bounds();
-    if (window.isEmpty()) window = Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10));
+    if (window.isEmpty())
+      window = Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10));
     window.min().array() -= field.headland_width;
     window.max().array() += field.headland_width;
   }
@@ -208,8 +218,8 @@ void draw_robot(Canvas& c, const core::Pose2& T, double length, double width, Co
   c.end_group();
 }
 
-void draw_cloud(Canvas& c, const core::PointCloud& cloud, const Eigen::Isometry3d& T,
-                double z_min, double z_max, bool colour_bar, double r) {
+void draw_cloud(Canvas& c, const core::PointCloud& cloud, const Eigen::Isometry3d& T, double z_min,
+                double z_max, bool colour_bar, double r) {
   std::vector<Eigen::Vector3d> pts;
   pts.reserve(cloud.size());
   for (const auto& p : cloud.points)
@@ -253,7 +263,8 @@ void draw_legend(Canvas& c, const std::vector<LegendEntry>& entries) {
     else if (s.filled)
       c.rect_px(sw.array() - 6.0, sw.array() + 6.0, s);
     else
-      c.line_px({sw.x() - 11, y}, {sw.x() + 11, y}, {s.stroke, {}, std::min(s.stroke_width_px, 4.0), false, s.dashed});
+      c.line_px({sw.x() - 11, y}, {sw.x() + 11, y},
+                {s.stroke, {}, std::min(s.stroke_width_px, 4.0), false, s.dashed});
     c.text_px({lo.x() + 40, y}, label, 12, kInk);
   }
   c.end_group();
@@ -267,7 +278,8 @@ void draw_scale_bar(Canvas& c) {
   c.begin_group("scale_bar");
   for (int k = 0; k < 4; ++k) {
     const Color fill = k % 2 ? Color::hex("#ffffff") : kInk;
-    c.rect_px({x0 + len_px * k / 4, y - 3}, {x0 + len_px * (k + 1) / 4, y + 3}, filled(fill, kInk, 1.0));
+    c.rect_px({x0 + len_px * k / 4, y - 3}, {x0 + len_px * (k + 1) / 4, y + 3},
+              filled(fill, kInk, 1.0));
   }
   c.text_px({x0, y + 16}, "0", 12, kInk, Align::centre);
   c.text_px({x0 + len_px, y + 16}, format_metres(len_m), 12, kInk, Align::centre);
@@ -281,8 +293,12 @@ void draw_axes_arrow(Canvas& c) {
   c.begin_group("axes");
   c.line_px(o, o + Eigen::Vector2d(30, 0), s);
   c.line_px(o, o - Eigen::Vector2d(0, 30), s);
-  c.polygon_px({o + Eigen::Vector2d(36, 0), o + Eigen::Vector2d(28, -4), o + Eigen::Vector2d(28, 4)}, filled(kInk));
-  c.polygon_px({o - Eigen::Vector2d(0, 36), o + Eigen::Vector2d(-4, -28), o + Eigen::Vector2d(4, -28)}, filled(kInk));
+  c.polygon_px(
+      {o + Eigen::Vector2d(36, 0), o + Eigen::Vector2d(28, -4), o + Eigen::Vector2d(28, 4)},
+      filled(kInk));
+  c.polygon_px(
+      {o - Eigen::Vector2d(0, 36), o + Eigen::Vector2d(-4, -28), o + Eigen::Vector2d(4, -28)},
+      filled(kInk));
   c.text_px(o + Eigen::Vector2d(40, 0), "x", 12, kInk);
   c.text_px(o + Eigen::Vector2d(8, -34), "y", 12, kInk);
   c.end_group();

@@ -19,11 +19,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp(const std::string& name) { return fs::temp_directory_path() / ("rownav_" + name); }
+fs::path temp(const std::string& name) {
+  return fs::temp_directory_path() / ("rownav_" + name);
+}
 
 const Eigen::AlignedBox2d kWorld(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 5));
 
-bool is_red(Color c) { return c.r > 200 && c.g < 80 && c.b < 80; }
+bool is_red(Color c) {
+  return c.r > 200 && c.g < 80 && c.b < 80;
+}
 
 TEST(Color, ParsesHex) {
   EXPECT_EQ(Color::hex("#40b255"), (Color{0x40, 0xb2, 0x55, 255}));
@@ -38,9 +42,9 @@ TEST(Canvas, WorldToPixelHasYUp) {
   c.set_view(kWorld, 20.0, 40);
   EXPECT_EQ(c.width(), 10 * 20 + 80);
   EXPECT_EQ(c.height(), 5 * 20 + 80);
-  EXPECT_TRUE(c.to_pixel({0, 0}).isApprox(Eigen::Vector2d(40, 140)));  // bottom-left
+  EXPECT_TRUE(c.to_pixel({0, 0}).isApprox(Eigen::Vector2d(40, 140)));   // bottom-left
   EXPECT_TRUE(c.to_pixel({10, 5}).isApprox(Eigen::Vector2d(240, 40)));  // top-right
-  EXPECT_LT(c.to_pixel({0, 1}).y(), c.to_pixel({0, 0}).y());           // y up = pixel up
+  EXPECT_LT(c.to_pixel({0, 1}).y(), c.to_pixel({0, 0}).y());            // y up = pixel up
   EXPECT_TRUE(c.to_world(c.to_pixel({3.3, 1.7})).isApprox(Eigen::Vector2d(3.3, 1.7)));
 }
 

@@ -128,7 +128,7 @@ TEST(TopView, ThreeRowFieldBothFormats) {
     return img.at(static_cast<int>(p.x()), static_cast<int>(p.y()));
   };
   EXPECT_EQ(at(-2.0, -2.0), Color::hex("#efe6d2"));  // soil in the headland
-  const Color canopy = at(3.0, 2.5 + 0.25);         // on the canopy band, off the centre line
+  const Color canopy = at(3.0, 2.5 + 0.25);          // on the canopy band, off the centre line
   EXPECT_GT(canopy.g, canopy.r);
   EXPECT_GT(canopy.g, canopy.b);
   const Color corridor = at(3.1, 1.25);  // dashed corridor centre: blue or soil
@@ -142,15 +142,18 @@ TEST(TopView, SvgHasLayersAndOneCirclePerPlant) {
   o.posts = false;
   draw_field(c, f, o);
   const std::string doc = c.document();
-  for (const char* g : {"id=\"field\"", "id=\"canopy\"", "id=\"corridor_centres\"",
-                        "id=\"legend\"", "id=\"scale_bar\"", "id=\"axes\""})
+  for (const char* g : {"id=\"field\"", "id=\"canopy\"", "id=\"corridor_centres\"", "id=\"legend\"",
+                        "id=\"scale_bar\"", "id=\"axes\""})
     EXPECT_NE(doc.find(g), std::string::npos) << g;
   const auto posts = std::count_if(f.plants.begin(), f.plants.end(), [](const sim::Plant& p) {
     return p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post;
   });
-  const auto field_part = doc.substr(doc.find("id=\"plants\""), doc.find("id=\"legend\"") - doc.find("id=\"plants\""));
+  const auto field_part =
+      doc.substr(doc.find("id=\"plants\""), doc.find("id=\"legend\"") - doc.find("id=\"plants\""));
   std::size_t circles = 0;
-  for (auto p = field_part.find("<circle"); p != std::string::npos; p = field_part.find("<circle", p + 1)) ++circles;
+  for (auto p = field_part.find("<circle"); p != std::string::npos;
+       p = field_part.find("<circle", p + 1))
+    ++circles;
   EXPECT_EQ(circles, f.plants.size() - static_cast<std::size_t>(posts));
 }
 
@@ -189,7 +192,9 @@ TEST(TopView, DemoVineyardWithScanCloudAndRobot) {
   render(fs::temp_directory_path() / "render_demo_zoom.png");
   const RgbaImage img = read_png(out);
   EXPECT_EQ(img.width, c->width());
-  EXPECT_GT(std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return std::isfinite(r); }), 200);
+  EXPECT_GT(std::count_if(scan.ranges.begin(), scan.ranges.end(),
+                          [](float r) { return std::isfinite(r); }),
+            200);
 }
 
 }  // namespace

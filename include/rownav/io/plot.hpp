@@ -26,8 +26,8 @@ struct PlotOptions {
   int width_px = 900;
   int height_px = 350;
   std::optional<std::pair<double, double>> y_range;  ///< default: the data range, padded
-  std::vector<std::pair<double, double>> bands;  ///< shaded x intervals, e.g. headland turns
-  std::string band_label = "headland";           ///< legend label of the bands
+  std::vector<std::pair<double, double>> bands;      ///< shaded x intervals, e.g. headland turns
+  std::string band_label = "headland";               ///< legend label of the bands
 };
 
 /// Draws the plot on `canvas` (sets its view to width_px x height_px).
