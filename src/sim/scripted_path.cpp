@@ -10,7 +10,6 @@ namespace rownav::sim {
 namespace {
 
 constexpr double kSpacing = 0.05;  // [m] dense path spacing
-constexpr double kArcStep = 0.05;  // [rad] turn arc sampling
 
 /// A corner of the coarse path; its attributes apply to the segment that ends at it.
 struct Key {
@@ -24,7 +23,7 @@ Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; 
 
 /// Appends an arc of centre c, radius r, from angle a0 to a1 (sign of a1 - a0 = direction).
 void arc(const Eigen::Vector2d& c, double r, double a0, double a1, std::vector<Eigen::Vector2d>& out) {
-  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(a1 - a0) / kArcStep)));
+  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(a1 - a0) * r / kSpacing)));
   for (int i = 1; i <= n; ++i) {
     const double a = a0 + (a1 - a0) * i / n;
     out.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));

@@ -1,10 +1,14 @@
 #include "rownav/sim/robot.hpp"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
+
+#include "rownav/sim/scripted_path.hpp"
 
 namespace rownav::sim {
 namespace {
@@ -127,6 +131,54 @@ TEST(Robot, FootprintCornersInWorld) {
   EXPECT_NEAR(f[1].y(), 1.45, 1e-9);
   EXPECT_NEAR(f[3].x(), 1.7, 1e-9);
   EXPECT_NEAR(f[3].y(), 0.55, 1e-9);
+}
+
+/// Minimal reader for the config files' field types: checks that the YAML keys are exactly the
+/// fields() names and fills the struct.
+struct YamlReader {
+  const YAML::Node& node;
+  std::set<std::string> seen;
+  template <class T>
+  void operator()(std::string_view name, T& value) {
+    const std::string key(name);
+    seen.insert(key);
+    ASSERT_TRUE(node[key].IsDefined()) << "missing " << key;
+    if constexpr (core::NamedEnum<T>) {
+      ASSERT_TRUE(core::enum_from_name(node[key].as<std::string>(), value)) << key;
+    } else if constexpr (std::is_same_v<T, std::vector<Eigen::Vector2d>>) {
+      value.clear();
+      for (const auto& p : node[key]) value.emplace_back(p[0].as<double>(), p[1].as<double>());
+    } else {
+      value = node[key].as<T>();
+    }
+  }
+};
+
+template <class C>
+C load(const std::string& file) {
+  const YAML::Node node = YAML::LoadFile(std::string(ROWNAV_SOURCE_DIR) + "/config/" + file);
+  C c;
+  YamlReader r{node, {}};
+  C::fields(c, r);
+  for (const auto& kv : node) EXPECT_TRUE(r.seen.count(kv.first.as<std::string>())) << file << ": " << kv.first;
+  EXPECT_EQ(r.seen.size(), node.size()) << file;
+  c.validate();
+  return c;
+}
+
+TEST(ConfigFiles, RobotsAndPathUseExactlyTheFieldNames) {
+  const auto skid = load<RobotConfig>("robots/skid_steer.yaml");
+  EXPECT_EQ(skid.drive, DriveKind::skid_steer);
+  EXPECT_EQ(skid.x_icr, RobotConfig{}.x_icr);
+  const auto diff = load<RobotConfig>("robots/differential.yaml");
+  EXPECT_EQ(diff.drive, DriveKind::differential);
+  const auto car = load<RobotConfig>("robots/car_like.yaml");
+  EXPECT_EQ(car.drive, DriveKind::ackermann);
+  EXPECT_NEAR(car.min_turn_radius(), 3.0, 0.1);
+  const auto path = load<PathConfig>("paths/three_corridors.yaml");
+  EXPECT_EQ(path.corridors, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(path.turn, TurnStyle::u_turn);
+  EXPECT_TRUE(path.waypoints.empty());
 }
 
 }  // namespace
