@@ -80,8 +80,10 @@ PolylineProjection project_on_polyline(const std::vector<Eigen::Vector2d>& line,
   best.distance = std::sqrt(best_d2);
   best.tangent = u;
   // At an interior vertex the bisector of the two segments is the tangent.
-  if (best_t <= 0.0 && i > 0) best.tangent = (u + (line[i] - line[i - 1]).normalized()).normalized();
-  if (best_t >= 1.0 && i < last) best.tangent = (u + (line[i + 2] - line[i + 1]).normalized()).normalized();
+  if (best_t <= 0.0 && i > 0)
+    best.tangent = (u + (line[i] - line[i - 1]).normalized()).normalized();
+  if (best_t >= 1.0 && i < last)
+    best.tangent = (u + (line[i + 2] - line[i + 1]).normalized()).normalized();
   const double raw_t = (p - line[i]).dot(u);
   const bool before = i == 0 && raw_t < 0.0, after = i == last && raw_t > l;
   best.along = best_arc + ((before || after) ? raw_t : best_t * l);

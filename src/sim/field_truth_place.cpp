@@ -10,7 +10,9 @@
 namespace rownav::sim {
 namespace {
 
-Eigen::Vector2d heading_of(const core::Pose2& T) { return {std::cos(T.theta), std::sin(T.theta)}; }
+Eigen::Vector2d heading_of(const core::Pose2& T) {
+  return {std::cos(T.theta), std::sin(T.theta)};
+}
 
 /// Corridor centre line (oriented along the robot's heading) and the errors relative to it.
 void fill_corridor(const PolylineProjection& m, const core::Pose2& T, GroundTruth& gt) {
@@ -40,7 +42,9 @@ void FieldTruth::fill_place(const Block& b, const core::Pose2& T,
     if (lat >= 0.0 && lat < best_l) best_l = lat, gt.left_row = r;
     if (lat < 0.0 && -lat < best_r) best_r = -lat, gt.right_row = r;
   }
-  const auto lat_of = [&](std::size_t k) { return proj[static_cast<std::size_t>(b.rows[k])].lateral; };
+  const auto lat_of = [&](std::size_t k) {
+    return proj[static_cast<std::size_t>(b.rows[k])].lateral;
+  };
   for (std::size_t k = 0; k + 1 < b.rows.size(); ++k) {
     if (lat_of(k) * lat_of(k + 1) > 0.0) continue;
     // Between rows k and k + 1: lane between their ends, headland beyond them.

@@ -7,18 +7,19 @@
 namespace rownav::sim {
 namespace {
 
-constexpr double kStopTolerance = 0.08;  // [m] a stop point counts as reached within this
-constexpr double kBrake = 0.5;           // [m/s^2] planned deceleration before stops
-constexpr double kMinSpeed = 0.08;       // [m/s] creeping speed when approaching a stop
-constexpr double kAlignTolerance = 0.03; // [rad] heading error that ends an in-place rotation
-constexpr double kRotateGain = 2.0;      // [1/s] in-place rotation gain
-constexpr double kRotateMax = 0.8;       // [rad/s] in-place rotation rate limit
-constexpr double kSpeedHorizon = 2.0;    // [m] look for slower path sections this far ahead
+constexpr double kStopTolerance = 0.08;   // [m] a stop point counts as reached within this
+constexpr double kBrake = 0.5;            // [m/s^2] planned deceleration before stops
+constexpr double kMinSpeed = 0.08;        // [m/s] creeping speed when approaching a stop
+constexpr double kAlignTolerance = 0.03;  // [rad] heading error that ends an in-place rotation
+constexpr double kRotateGain = 2.0;       // [1/s] in-place rotation gain
+constexpr double kRotateMax = 0.8;        // [rad/s] in-place rotation rate limit
+constexpr double kSpeedHorizon = 2.0;     // [m] look for slower path sections this far ahead
 
 }  // namespace
 
 PathFollower::PathFollower(std::vector<PathPoint> path, double lookahead)
-    : path_(std::move(path)), lookahead_(std::isfinite(lookahead) && lookahead > 0.1 ? lookahead : 1.0) {
+    : path_(std::move(path)),
+      lookahead_(std::isfinite(lookahead) && lookahead > 0.1 ? lookahead : 1.0) {
   arc_.assign(path_.size(), 0.0);
   for (std::size_t i = 1; i < path_.size(); ++i)
     arc_[i] = arc_[i - 1] + (path_[i].p - path_[i - 1].p).norm();

@@ -92,8 +92,8 @@ core::ImuSample Imu::sample(const RobotState& state, double roll, double pitch) 
   core::ImuSample s;
   s.stamp = state.stamp;
   s.angular_velocity = t.omega * up + gyro_bias_ + gaussian3(rng_, config_.gyro_noise_density * sq);
-  s.linear_acceleration = a_body + kGravity * up + accel_bias_ +
-                          gaussian3(rng_, config_.accel_noise_density * sq);
+  s.linear_acceleration =
+      a_body + kGravity * up + accel_bias_ + gaussian3(rng_, config_.accel_noise_density * sq);
   last_twist_ = t;
   last_stamp_ = state.stamp;
   has_last_ = true;

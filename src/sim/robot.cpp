@@ -8,7 +8,9 @@
 namespace rownav::sim {
 namespace {
 
-double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
+double finite_or_zero(double x) {
+  return std::isfinite(x) ? x : 0.0;
+}
 
 /// Moves `current` towards `target` by at most `max_step`.
 double rate_limit(double current, double target, double max_step) {
@@ -43,8 +45,7 @@ double RobotConfig::min_turn_radius() const {
   return wheelbase / std::tan(core::deg2rad(max_steer_deg));
 }
 
-Robot::Robot(const RobotConfig& config, std::uint64_t seed, const core::Pose2& start,
-             double stamp)
+Robot::Robot(const RobotConfig& config, std::uint64_t seed, const core::Pose2& start, double stamp)
     : config_(config), rng_(seed) {
   config_.validate();
   state_.pose = start;
@@ -53,7 +54,8 @@ Robot::Robot(const RobotConfig& config, std::uint64_t seed, const core::Pose2& s
 
 core::Twist2 Robot::limit(const core::Twist2& cmd, double dt) {
   const double v = std::clamp(finite_or_zero(cmd.v), -config_.max_reverse_speed, config_.max_speed);
-  const double w = std::clamp(finite_or_zero(cmd.omega), -config_.max_yaw_rate, config_.max_yaw_rate);
+  const double w =
+      std::clamp(finite_or_zero(cmd.omega), -config_.max_yaw_rate, config_.max_yaw_rate);
   applied_.v = rate_limit(applied_.v, v, config_.max_accel * dt);
   applied_.omega = rate_limit(applied_.omega, w, config_.max_yaw_accel * dt);
   applied_.vy = 0.0;
@@ -91,8 +93,8 @@ void Robot::step_ackermann(double dt) {
   if (std::abs(applied_.v) > 1e-3)
     target = std::atan(config_.wheelbase * applied_.omega / applied_.v);
   target = std::clamp(target, -max_steer, max_steer);
-  state_.steering_angle = rate_limit(state_.steering_angle, target,
-                                     core::deg2rad(config_.max_steer_rate_deg) * dt);
+  state_.steering_angle =
+      rate_limit(state_.steering_angle, target, core::deg2rad(config_.max_steer_rate_deg) * dt);
   // Rear wheels follow the bicycle model with the actual steering angle.
   const double w_nom = applied_.v * std::tan(state_.steering_angle) / config_.wheelbase;
   const double half = 0.5 * config_.track_width;
@@ -110,9 +112,9 @@ void Robot::integrate(double dt) {
   const auto& t = state_.twist;
   const double th = state_.pose.theta + 0.5 * t.omega * dt;
   const double c = std::cos(th), s = std::sin(th);
-  state_.pose = core::Pose2(state_.pose.x + (c * t.v - s * t.vy) * dt,
-                            state_.pose.y + (s * t.v + c * t.vy) * dt,
-                            state_.pose.theta + t.omega * dt);
+  state_.pose =
+      core::Pose2(state_.pose.x + (c * t.v - s * t.vy) * dt,
+                  state_.pose.y + (s * t.v + c * t.vy) * dt, state_.pose.theta + t.omega * dt);
   state_.left_wheel_angle += state_.left_wheel_speed * dt;
   state_.right_wheel_angle += state_.right_wheel_speed * dt;
   state_.stamp += dt;

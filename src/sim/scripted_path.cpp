@@ -19,10 +19,13 @@ struct Key {
   bool stop;
 };
 
-Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
+Eigen::Vector2d left_normal(const Eigen::Vector2d& d) {
+  return {-d.y(), d.x()};
+}
 
 /// Appends an arc of centre c, radius r, from angle a0 to a1 (sign of a1 - a0 = direction).
-void arc(const Eigen::Vector2d& c, double r, double a0, double a1, std::vector<Eigen::Vector2d>& out) {
+void arc(const Eigen::Vector2d& c, double r, double a0, double a1,
+         std::vector<Eigen::Vector2d>& out) {
   const int n = std::max(1, static_cast<int>(std::ceil(std::abs(a1 - a0) * r / kSpacing)));
   for (int i = 1; i <= n; ++i) {
     const double a = a0 + (a1 - a0) * i / n;
@@ -54,13 +57,16 @@ void add_turn(const Eigen::Vector2d& A, const Eigen::Vector2d& dA, const Eigen::
   const Eigen::Vector2d w = B - A;
   const Eigen::Vector2d uy = (w.dot(left_normal(dA)) >= 0.0 ? 1.0 : -1.0) * left_normal(dA);
   const double bx = w.dot(dA), D = w.dot(uy), x0 = std::max(0.0, bx);
-  const auto world = [&](const Eigen::Vector2d& l) { return Eigen::Vector2d(A + l.x() * dA + l.y() * uy); };
+  const auto world = [&](const Eigen::Vector2d& l) {
+    return Eigen::Vector2d(A + l.x() * dA + l.y() * uy);
+  };
   if (x0 > 0.0) keys.push_back({world({x0, 0.0}), cfg.speed, false, false});
   if (cfg.turn == TurnStyle::in_place) {
     keys.back().stop = true;
     keys.push_back({world({x0, D}), cfg.turn_speed, false, true});
   } else {
-    for (const auto& l : local_turn(x0, D, radius)) keys.push_back({world(l), cfg.turn_speed, false, false});
+    for (const auto& l : local_turn(x0, D, radius))
+      keys.push_back({world(l), cfg.turn_speed, false, false});
   }
   keys.push_back({B, cfg.turn_speed, false, false});
 }
@@ -96,7 +102,8 @@ std::vector<Key> corridor_keys(const FieldTruth& truth, const PathConfig& cfg, d
       add_turn(exit.p, d_prev, centre[0] - cfg.lead_out * d_in, cfg, radius, keys);
     }
     keys.push_back({centre[0], cfg.speed, false, false});
-    for (std::size_t j = 1; j < centre.size(); ++j) keys.push_back({centre[j], cfg.speed, true, false});
+    for (std::size_t j = 1; j < centre.size(); ++j)
+      keys.push_back({centre[j], cfg.speed, true, false});
     keys.push_back({centre.back() + cfg.lead_out * d_out, cfg.speed, false, false});
   }
   return keys;
@@ -116,7 +123,8 @@ std::vector<PathPoint> densify(const std::vector<Key>& keys) {
     }
     const int n = std::max(1, static_cast<int>(std::ceil(len / kSpacing)));
     for (int j = 1; j <= n; ++j)
-      out.push_back({keys[k - 1].p + d * (static_cast<double>(j) / n), keys[k].speed, keys[k].in_row});
+      out.push_back(
+          {keys[k - 1].p + d * (static_cast<double>(j) / n), keys[k].speed, keys[k].in_row});
     if (keys[k].stop) out.back().speed = 0.0;
   }
   out.back().speed = 0.0;
@@ -130,8 +138,9 @@ void check_inside(const FieldTruth& truth, const std::vector<PathPoint>& path) {
   box.max().array() += m;
   for (const auto& pt : path)
     if (!box.contains(pt.p))
-      throw std::invalid_argument("path leaves the field area (row bounds grown by headland_width) at (" +
-                                  std::to_string(pt.p.x()) + ", " + std::to_string(pt.p.y()) + ")");
+      throw std::invalid_argument(
+          "path leaves the field area (row bounds grown by headland_width) at (" +
+          std::to_string(pt.p.x()) + ", " + std::to_string(pt.p.y()) + ")");
 }
 
 }  // namespace
@@ -158,7 +167,8 @@ std::vector<PathPoint> build_path(const FieldTruth& truth, const PathConfig& cfg
     std::vector<Key> keys;
     for (const auto& w : cfg.waypoints) keys.push_back({w, cfg.speed, false, false});
     path = densify(keys);
-    for (auto& pt : path) pt.in_row = truth.at(core::Pose2(pt.p.x(), pt.p.y(), 0.0), 0.0, 0.0).place == Place::lane;
+    for (auto& pt : path)
+      pt.in_row = truth.at(core::Pose2(pt.p.x(), pt.p.y(), 0.0), 0.0, 0.0).place == Place::lane;
   } else {
     // Small margin over the minimum radius so the follower is not steering at its limit.
     const double radius = std::max(0.5 * truth.field().row_spacing, 1.1 * robot.min_turn_radius());

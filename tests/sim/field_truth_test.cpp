@@ -37,7 +37,9 @@ Field four_rows(double amp = 0.0) {
   return f;
 }
 
-Place place_at(const FieldTruth& t, double x, double y) { return t.at({x, y, 0.0}, 0.0).place; }
+Place place_at(const FieldTruth& t, double x, double y) {
+  return t.at({x, y, 0.0}, 0.0).place;
+}
 
 TEST(FieldTruth, PlacesAtKnownPoints) {
   const Field f = four_rows();
@@ -142,7 +144,8 @@ TEST(CrushCounter, CentreLineCrushesNothingRowCrushesOnce) {
   EXPECT_EQ(cc.total(), 6);  // once per plant
   // Posts are not plants.
   cc.update(footprint({-0.5, 0.0, 0.0}));
-  for (int i : cc.crushed_indices()) EXPECT_NE(f.plants[static_cast<std::size_t>(i)].kind, PlantKind::post);
+  for (int i : cc.crushed_indices())
+    EXPECT_NE(f.plants[static_cast<std::size_t>(i)].kind, PlantKind::post);
 }
 
 }  // namespace

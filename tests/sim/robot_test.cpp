@@ -160,7 +160,8 @@ C load(const std::string& file) {
   C c;
   YamlReader r{node, {}};
   C::fields(c, r);
-  for (const auto& kv : node) EXPECT_TRUE(r.seen.count(kv.first.as<std::string>())) << file << ": " << kv.first;
+  for (const auto& kv : node)
+    EXPECT_TRUE(r.seen.count(kv.first.as<std::string>())) << file << ": " << kv.first;
   EXPECT_EQ(r.seen.size(), node.size()) << file;
   c.validate();
   return c;

@@ -56,7 +56,8 @@ TEST(BuildPath, ThreeCorridorsOnCentreLinesTurnsClearOfRows) {
     if (!path[i].in_row) continue;
     ++in_row;
     double d = 1e9;
-    for (int k = 0; k < 3; ++k) d = std::min(d, project_on_polyline(t.corridor_centre(0, k), path[i].p).distance);
+    for (int k = 0; k < 3; ++k)
+      d = std::min(d, project_on_polyline(t.corridor_centre(0, k), path[i].p).distance);
     EXPECT_LT(d, 0.02);
     EXPECT_EQ(path[i].speed, 1.0);
   }
@@ -82,7 +83,8 @@ TEST(BuildPath, CarLikeBulbTurnRespectsMinimumRadius) {
     // Curvature from three points 0.1 m apart: 2 sin(angle) / chord.
     const Eigen::Vector2d a = path[i - 2].p, b = path[i - 1].p, d = path[i].p;
     const double cr = (b - a).x() * (d - b).y() - (b - a).y() * (d - b).x();
-    max_curv = std::max(max_curv, 2.0 * std::abs(cr) / ((b - a).norm() * (d - b).norm() * (d - a).norm()));
+    max_curv =
+        std::max(max_curv, 2.0 * std::abs(cr) / ((b - a).norm() * (d - b).norm() * (d - a).norm()));
     EXPECT_GT(min_row_distance(f, path[i].p), 0.99);
   }
   EXPECT_LT(max_curv, 1.0 / car.min_turn_radius() * 1.01);
@@ -164,7 +166,8 @@ DriveResult drive(const Field& f, const PathConfig& pc, const RobotConfig& rc, s
   r.rms = std::sqrt(sum2 / std::max(n, 1));
   r.crushed = crush.total();
   r.final_pose = robot.state().pose;
-  std::printf("drive: t %.1f s, rms %.4f m, max %.4f m, n %d, crushed %d\n", robot.state().stamp, r.rms, r.max_err, n, r.crushed);
+  std::printf("drive: t %.1f s, rms %.4f m, max %.4f m, n %d, crushed %d\n", robot.state().stamp,
+              r.rms, r.max_err, n, r.crushed);
   return r;
 }
 

@@ -17,10 +17,10 @@ namespace rownav::sim {
 
 /// Closest point of a polyline to a query point, with extended-end coordinates.
 struct PolylineProjection {
-  Eigen::Vector2d point = Eigen::Vector2d::Zero();    ///< [m] closest point on the polyline
-  Eigen::Vector2d tangent = Eigen::Vector2d::UnitX(); ///< unit direction there (start -> end)
-  int segment = 0;        ///< index of the segment holding `point`
-  double distance = 0.0;  ///< [m] Euclidean distance to `point`
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();     ///< [m] closest point on the polyline
+  Eigen::Vector2d tangent = Eigen::Vector2d::UnitX();  ///< unit direction there (start -> end)
+  int segment = 0;                                     ///< index of the segment holding `point`
+  double distance = 0.0;                               ///< [m] Euclidean distance to `point`
   /// [m] arc length of the projection; < 0 before the start, > length after the end (measured
   /// along the first / last segment extended).
   double along = 0.0;
@@ -71,8 +71,8 @@ class FieldTruth {
     std::vector<std::vector<Eigen::Vector2d>> corridors;
   };
   const Block* find_block(int id) const;
-  void fill_place(const Block& b, const core::Pose2& T,
-                  const std::vector<PolylineProjection>& proj, GroundTruth& gt) const;
+  void fill_place(const Block& b, const core::Pose2& T, const std::vector<PolylineProjection>& proj,
+                  GroundTruth& gt) const;
   void fill_rows(const core::Pose2& T, double reach, const std::vector<PolylineProjection>& proj,
                  GroundTruth& gt) const;
 

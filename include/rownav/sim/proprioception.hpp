@@ -49,12 +49,12 @@ struct ImuConfig {
 
 /// GNSS receiver degraded under the canopy: inflated noise and outages in lanes.
 struct GnssConfig {
-  bool enabled = false;                   ///< false: every fix is invalid
-  double rate_hz = 5.0;                   ///< [Hz]
-  double noise_std = 0.02;                ///< [m] horizontal 1-sigma in the open (RTK fix)
+  bool enabled = false;                     ///< false: every fix is invalid
+  double rate_hz = 5.0;                     ///< [Hz]
+  double noise_std = 0.02;                  ///< [m] horizontal 1-sigma in the open (RTK fix)
   double outage_probability_in_lane = 0.1;  ///< [1/s] rate at which outages start in a lane
-  double outage_mean_duration = 5.0;      ///< [s] mean (exponential) outage length
-  double canopy_noise_factor = 5.0;       ///< [-] noise multiplier in a lane (under the canopy)
+  double outage_mean_duration = 5.0;        ///< [s] mean (exponential) outage length
+  double canopy_noise_factor = 5.0;         ///< [-] noise multiplier in a lane (under the canopy)
 
   template <class S, class V>
   static void fields(S& s, V& v) {

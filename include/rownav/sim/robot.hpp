@@ -26,9 +26,9 @@ enum class DriveKind : std::uint8_t { differential, skid_steer, ackermann };
 struct RobotConfig {
   DriveKind drive = DriveKind::skid_steer;  ///< kinematic model
   std::string name = "skid_steer";          ///< label for reports
-  double track_width = 0.55;   ///< [m] wheel / track centre distance
-  double wheelbase = 0.6;      ///< [m] ackermann: rear to front axle
-  double wheel_radius = 0.165; ///< [m] (track: sprocket radius)
+  double track_width = 0.55;                ///< [m] wheel / track centre distance
+  double wheelbase = 0.6;                   ///< [m] ackermann: rear to front axle
+  double wheel_radius = 0.165;              ///< [m] (track: sprocket radius)
   double x_icr = 0.40;  ///< [m] true ICR distance, Bertoglio 2023 eq. (2) (ideal: track_width / 2)
   double alpha = 0.90;  ///< [-] true correction factor, Bertoglio 2023 eq. (2) (ideal: 1)
   double slip_noise = 0.02;          ///< [-] std of the relative random track-speed slip
@@ -75,9 +75,9 @@ struct RobotConfig {
 
 /// True state of a simulated robot.
 struct RobotState {
-  double stamp = 0.0;     ///< [s]
-  core::Pose2 pose;       ///< true planar pose T_world_base
-  core::Twist2 twist;     ///< true body velocity
+  double stamp = 0.0;              ///< [s]
+  core::Pose2 pose;                ///< true planar pose T_world_base
+  core::Twist2 twist;              ///< true body velocity
   double left_wheel_speed = 0.0;   ///< [rad/s] left wheel / sprocket (rear-left for ackermann)
   double right_wheel_speed = 0.0;  ///< [rad/s]
   double left_wheel_angle = 0.0;   ///< [rad] cumulative
@@ -123,6 +123,7 @@ template <>
 struct rownav::core::EnumNames<rownav::sim::DriveKind> {
   using E = rownav::sim::DriveKind;
   static constexpr std::array<std::pair<E, std::string_view>, 3> values{
-      {{E::differential, "differential"}, {E::skid_steer, "skid_steer"},
+      {{E::differential, "differential"},
+       {E::skid_steer, "skid_steer"},
        {E::ackermann, "ackermann"}}};
 };

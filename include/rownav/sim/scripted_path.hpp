@@ -26,13 +26,13 @@ enum class TurnStyle : std::uint8_t { u_turn, in_place, bulb };
 
 /// What the scripted drive does.
 struct PathConfig {
-  int block = 0;                     ///< block whose corridors are driven
-  std::vector<int> corridors = {0, 1};  ///< lanes to drive in order (direction alternates)
-  double speed = 1.0;                ///< [m/s] in the lanes and lead-in / lead-out
-  double turn_speed = 0.5;           ///< [m/s] in headland turns
-  double lead_in = 2.0;              ///< [m] start before the first lane entry
-  double lead_out = 1.5;             ///< [m] straight past each exit before turning
-  TurnStyle turn = TurnStyle::u_turn;  ///< headland turn manoeuvre
+  int block = 0;                           ///< block whose corridors are driven
+  std::vector<int> corridors = {0, 1};     ///< lanes to drive in order (direction alternates)
+  double speed = 1.0;                      ///< [m/s] in the lanes and lead-in / lead-out
+  double turn_speed = 0.5;                 ///< [m/s] in headland turns
+  double lead_in = 2.0;                    ///< [m] start before the first lane entry
+  double lead_out = 1.5;                   ///< [m] straight past each exit before turning
+  TurnStyle turn = TurnStyle::u_turn;      ///< headland turn manoeuvre
   std::vector<Eigen::Vector2d> waypoints;  ///< [m] world; when non-empty, corridors are ignored
 
   template <class S, class V>
@@ -52,8 +52,8 @@ struct PathConfig {
 /// One point of a dense path.
 struct PathPoint {
   Eigen::Vector2d p = Eigen::Vector2d::Zero();  ///< [m] world
-  double speed = 0.0;  ///< [m/s] target speed; 0 marks a stop (rotate in place, or the end)
-  bool in_row = false; ///< on a corridor centre line between the row ends
+  double speed = 0.0;   ///< [m/s] target speed; 0 marks a stop (rotate in place, or the end)
+  bool in_row = false;  ///< on a corridor centre line between the row ends
 };
 
 /// Dense polyline (~0.05 m spacing) through the corridors' centre lines joined by headland turns
@@ -83,11 +83,11 @@ class PathFollower {
   std::size_t next_stop(std::size_t from) const;
 
   std::vector<PathPoint> path_;
-  std::vector<double> arc_;  // [m] cumulative length
+  std::vector<double> arc_;         // [m] cumulative length
   std::vector<std::size_t> stops_;  // indices of points with speed 0, ascending (last included)
   double lookahead_;
-  std::size_t index_ = 0;    // closest path point so far (monotonic)
-  bool aligning_ = false;    // rotating in place after a stop point
+  std::size_t index_ = 0;  // closest path point so far (monotonic)
+  bool aligning_ = false;  // rotating in place after a stop point
   bool done_ = false;
 };
 
