@@ -9,18 +9,19 @@
 namespace rownav::sim {
 namespace {
 
-/// `n` straight rows along x from 0 to `len` m, 2 m apart, a vine every metre.
-Field rows_field(int n = 4, double len = 30.0, double headland = 6.0) {
+/// `n` rows along x from 0 to `len` m, 2 m apart (+ `amp` sin(x / 8)), a vine every metre.
+Field rows_field(int n = 4, double len = 30.0, double headland = 6.0, double amp = 0.0) {
   Field f;
   f.row_spacing = 2.0;
   f.headland_width = headland;
   for (int k = 0; k < n; ++k) {
     Row r;
     r.id = k;
-    r.polyline = {{0.0, 2.0 * k}, {len, 2.0 * k}};
+    for (double x = 0.0; x <= len + 1e-9; x += 0.5)
+      r.polyline.emplace_back(x, 2.0 * k + amp * std::sin(x / 8.0));
     for (int i = 0; i <= static_cast<int>(len); ++i) {
       Plant p;
-      p.position = {static_cast<double>(i), 2.0 * k};
+      p.position = {static_cast<double>(i), 2.0 * k + amp * std::sin(i / 8.0)};
       p.row = k;
       f.plants.push_back(p);
     }
@@ -179,6 +180,17 @@ TEST(PathFollower, SkidSteerWithSlipFollowsUTurns) {
   EXPECT_EQ(r.crushed, 0);
   EXPECT_NEAR(r.final_pose.x, 31.5, 0.15);
   EXPECT_NEAR(r.final_pose.y, 5.0, 0.1);
+}
+
+TEST(PathFollower, SkidSteerOnCurvedRows) {
+  const Field f = rows_field(4, 30.0, 6.0, 1.5);
+  const FieldTruth t(f);
+  for (const auto& pt : build_path(t, three_corridors(), RobotConfig{}))
+    EXPECT_GT(min_row_distance(f, pt.p), 0.95);
+  const DriveResult r = drive(f, three_corridors(), RobotConfig{}, 12);
+  EXPECT_TRUE(r.done);
+  EXPECT_LT(r.max_err, 0.05);
+  EXPECT_EQ(r.crushed, 0);
 }
 
 TEST(PathFollower, SkidSteerInPlaceTurns) {
