@@ -152,6 +152,10 @@ TEST_F(CloudIoTest, BadFilesGiveOneLineErrors) {
                            "DATA ascii\n"))
                 .find("field z"),
             std::string::npos);
+  EXPECT_NE(error_of(write("junk.ply", "ply\nformat ascii 1.0\nelement vertex 9\nend_header\n1\n"))
+                .find("junk.ply"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("junk2.ply", "hello\n")).find("not a valid PLY"), std::string::npos);
   // Short ascii lines: PCL reports them; we must neither crash nor accept silently.
   const std::string ascii = error_of(write("short.pcd", head + "ascii\n1 2 3\n4 5\n"));
   EXPECT_FALSE(ascii.empty());
