@@ -57,12 +57,16 @@ PointColumns header_columns(const CsvReader& csv) {
   c.count = csv.size();
   for (std::size_t i = 0; i < csv.size(); ++i) {
     const auto name = csv.cell(i);
-    std::size_t* slot = name == "frame" ? &c.frame : name == "stamp" ? &c.stamp
-                        : name == "x"   ? &c.x     : name == "y"     ? &c.y
-                        : name == "z"   ? &c.z     : name == "intensity" ? &c.intensity
-                                                                        : nullptr;
-    if (!slot) csv.fail("unknown column '" + std::string(name) +
-                        "' (valid: frame, stamp, x, y, z, intensity)");
+    std::size_t* slot = name == "frame"       ? &c.frame
+                        : name == "stamp"     ? &c.stamp
+                        : name == "x"         ? &c.x
+                        : name == "y"         ? &c.y
+                        : name == "z"         ? &c.z
+                        : name == "intensity" ? &c.intensity
+                                              : nullptr;
+    if (!slot)
+      csv.fail("unknown column '" + std::string(name) +
+               "' (valid: frame, stamp, x, y, z, intensity)");
     *slot = i;
   }
   if (c.x == PointColumns::npos || c.y == PointColumns::npos) csv.fail("need columns x and y");
@@ -72,11 +76,15 @@ PointColumns header_columns(const CsvReader& csv) {
 PointColumns headerless_columns(const CsvReader& csv) {
   PointColumns c;
   c.count = csv.size();
-  if (c.count == 2) c.x = 0, c.y = 1;
-  else if (c.count == 3) c.x = 0, c.y = 1, c.z = 2;
-  else if (c.count == 4) c.frame = 0, c.x = 1, c.y = 2, c.z = 3;
-  else csv.fail("expected 2 (x,y), 3 (x,y,z) or 4 (frame,x,y,z) columns, got " +
-                std::to_string(c.count));
+  if (c.count == 2)
+    c.x = 0, c.y = 1;
+  else if (c.count == 3)
+    c.x = 0, c.y = 1, c.z = 2;
+  else if (c.count == 4)
+    c.frame = 0, c.x = 1, c.y = 2, c.z = 3;
+  else
+    csv.fail("expected 2 (x,y), 3 (x,y,z) or 4 (frame,x,y,z) columns, got " +
+             std::to_string(c.count));
   return c;
 }
 
@@ -123,9 +131,9 @@ std::vector<core::PointCloud> read_points_csv(const std::filesystem::path& file)
       if (fresh) {
         core::PointCloud cloud;
         cloud.has_intensity = c.intensity != PointColumns::npos;
-        cloud.stamp = c.stamp != PointColumns::npos ? csv.number(c.stamp, "stamp")
+        cloud.stamp = c.stamp != PointColumns::npos   ? csv.number(c.stamp, "stamp")
                       : c.frame != PointColumns::npos ? csv.number(c.frame, "frame")
-                                                     : 0.0;
+                                                      : 0.0;
         clouds.push_back(std::move(cloud));
       }
       current = it->second;

@@ -8,9 +8,9 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
-#include <limits>
 #include <string>
 
 #include "rownav/io/cloud_io.hpp"
@@ -43,15 +43,24 @@ double field_value(const std::uint8_t* p, std::uint8_t datatype) {
     return static_cast<double>(v);
   };
   switch (datatype) {
-    case pcl::PCLPointField::INT8: return get(std::int8_t{});
-    case pcl::PCLPointField::UINT8: return get(std::uint8_t{});
-    case pcl::PCLPointField::INT16: return get(std::int16_t{});
-    case pcl::PCLPointField::UINT16: return get(std::uint16_t{});
-    case pcl::PCLPointField::INT32: return get(std::int32_t{});
-    case pcl::PCLPointField::UINT32: return get(std::uint32_t{});
-    case pcl::PCLPointField::FLOAT32: return get(float{});
-    case pcl::PCLPointField::FLOAT64: return get(double{});
-    default: return std::numeric_limits<double>::quiet_NaN();
+    case pcl::PCLPointField::INT8:
+      return get(std::int8_t{});
+    case pcl::PCLPointField::UINT8:
+      return get(std::uint8_t{});
+    case pcl::PCLPointField::INT16:
+      return get(std::int16_t{});
+    case pcl::PCLPointField::UINT16:
+      return get(std::uint16_t{});
+    case pcl::PCLPointField::INT32:
+      return get(std::int32_t{});
+    case pcl::PCLPointField::UINT32:
+      return get(std::uint32_t{});
+    case pcl::PCLPointField::FLOAT32:
+      return get(float{});
+    case pcl::PCLPointField::FLOAT64:
+      return get(double{});
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
@@ -111,10 +120,11 @@ std::int64_t pcd_point_step(PcdKeys& keys, const std::string& name) {
     const std::string& sz = keys["SIZE"][i];
     const std::string& ty = keys["TYPE"][i];
     std::int64_t size = 0, count = 0;
-    const bool ok = parse_int64(sz, size) && parse_int64(keys["COUNT"][i], count) &&
-                    count >= 1 && count < 1000000 &&
-                    ((ty == "F" && (size == 4 || size == 8)) ||
-                     ((ty == "I" || ty == "U") && (size == 1 || size == 2 || size == 4 || size == 8)));
+    const bool ok =
+        parse_int64(sz, size) && parse_int64(keys["COUNT"][i], count) && count >= 1 &&
+        count < 1000000 &&
+        ((ty == "F" && (size == 4 || size == 8)) ||
+         ((ty == "I" || ty == "U") && (size == 1 || size == 2 || size == 4 || size == 8)));
     if (!ok) bad_pcd(name, "field " + keys["FIELDS"][i] + ": TYPE " + ty + " SIZE " + sz);
     step += size * count;
   }
@@ -230,8 +240,9 @@ core::PointCloud read_cloud(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
-    throw InputError(name, "", std::filesystem::exists(file, ec) ? "not a regular file"
-                                                                  : "cannot open: no such file");
+    throw InputError(
+        name, "",
+        std::filesystem::exists(file, ec) ? "not a regular file" : "cannot open: no such file");
   if (std::filesystem::file_size(file, ec) == 0) throw InputError(name, "", "empty file");
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

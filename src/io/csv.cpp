@@ -40,10 +40,18 @@ std::string format_floating(T v) {
 
 }  // namespace
 
-std::string format_double(double v) { return format_floating(v); }
-std::string format_float(float v) { return format_floating(v); }
-bool parse_double(std::string_view s, double& out) { return parse_floating(s, out); }
-bool parse_float(std::string_view s, float& out) { return parse_floating(s, out); }
+std::string format_double(double v) {
+  return format_floating(v);
+}
+std::string format_float(float v) {
+  return format_floating(v);
+}
+bool parse_double(std::string_view s, double& out) {
+  return parse_floating(s, out);
+}
+bool parse_float(std::string_view s, float& out) {
+  return parse_floating(s, out);
+}
 
 bool parse_int64(std::string_view s, std::int64_t& out) {
   s = trim(s);
@@ -57,10 +65,14 @@ std::string quote_for_message(std::string_view s) {
   std::string out = "'";
   for (std::size_t i = 0; i < s.size() && i < 40; ++i) {
     const char c = s[i];
-    if (c == '\n') out += "\\n";
-    else if (c == '\r') out += "\\r";
-    else if (static_cast<unsigned char>(c) < 0x20) out += '?';
-    else out += c;
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\r')
+      out += "\\r";
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out += '?';
+    else
+      out += c;
   }
   if (s.size() > 40) out += "...";
   return out + "'";
@@ -88,8 +100,8 @@ bool CsvReader::next() {
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = line.find(',', start);
-      cells_.push_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos
-                                                                              : comma - start)));
+      cells_.push_back(
+          trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
       if (comma == std::string_view::npos) break;
       start = comma + 1;
     }

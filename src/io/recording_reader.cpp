@@ -34,7 +34,8 @@ E enum_cell(const CsvReader& csv, std::size_t i, std::string_view column) {
 
 int int_cell(const CsvReader& csv, std::size_t i, std::string_view column) {
   const std::int64_t v = csv.integer(i, column);
-  if (!std::in_range<int>(v)) csv.fail("value out of range in column '" + std::string(column) + "'");
+  if (!std::in_range<int>(v))
+    csv.fail("value out of range in column '" + std::string(column) + "'");
   return static_cast<int>(v);
 }
 
@@ -53,17 +54,37 @@ void read_row_line(const CsvReader& csv, std::size_t i, int id, sim::GroundTruth
 void read_ground_truth(const fs::path& dir, Recording& rec) {
   std::unique_ptr<CsvReader> csv;
   if (!open_csv(dir, "ground_truth.csv",
-                {"stamp", "x", "y", "theta", "z", "roll", "pitch", "v", "vy", "omega", "place",
-                 "block", "corridor", "left_row", "right_row", "lateral_error", "heading_error",
-                 "plants_crushed", "left_offset", "left_heading", "right_offset", "right_heading"},
+                {"stamp",
+                 "x",
+                 "y",
+                 "theta",
+                 "z",
+                 "roll",
+                 "pitch",
+                 "v",
+                 "vy",
+                 "omega",
+                 "place",
+                 "block",
+                 "corridor",
+                 "left_row",
+                 "right_row",
+                 "lateral_error",
+                 "heading_error",
+                 "plants_crushed",
+                 "left_offset",
+                 "left_heading",
+                 "right_offset",
+                 "right_heading"},
                 csv))
     return;
   while (csv->next()) {
     csv->expect_size(22);
     sim::GroundTruth g;
     const char* names[] = {"stamp", "x", "y", "theta", "z", "roll", "pitch", "v", "vy", "omega"};
-    double* slots[] = {&g.stamp, &g.T_world_base.x, &g.T_world_base.y, &g.T_world_base.theta,
-                       &g.z, &g.roll, &g.pitch, &g.twist.v, &g.twist.vy, &g.twist.omega};
+    double* slots[] = {&g.stamp,    &g.T_world_base.x, &g.T_world_base.y, &g.T_world_base.theta,
+                       &g.z,        &g.roll,           &g.pitch,          &g.twist.v,
+                       &g.twist.vy, &g.twist.omega};
     for (std::size_t i = 0; i < 10; ++i) *slots[i] = csv->number(i, names[i]);
     g.place = enum_cell<sim::Place>(*csv, 10, "place");
     g.block = int_cell(*csv, 11, "block");
@@ -149,7 +170,8 @@ void read_lidar(const fs::path& dir, Recording& rec) {
       if (csv->integer(0, "index") != static_cast<std::int64_t>(rec.cloud_stamps.size()))
         csv->fail("frame indices must be consecutive from 0");
       const std::string file(csv->cell(2));
-      if (file.empty() || file.find('/') != std::string::npos || file.find("..") != std::string::npos)
+      if (file.empty() || file.find('/') != std::string::npos ||
+          file.find("..") != std::string::npos)
         csv->fail("bad file name " + quote_for_message(file));
       rec.cloud_stamps.push_back(csv->number(1, "stamp"));
       rec.cloud_files.push_back(file);

@@ -11,7 +11,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string d(double v) { return format_double(v); }
+std::string d(double v) {
+  return format_double(v);
+}
 
 /// Writes ",<offset>,<heading>" of row `id` in gt.rows, or ",," when absent.
 void write_row_line(std::ostream& out, const sim::GroundTruth& gt, int id) {
@@ -75,8 +77,8 @@ void RecordingWriter::write_scan(const core::Scan2D& scan) {
 
 void RecordingWriter::write_encoders(const core::WheelEncoderSample& s) {
   stream("encoders.csv", "stamp,left_ticks,right_ticks,steering_angle")
-      << d(s.stamp) << ',' << s.left_ticks << ',' << s.right_ticks << ','
-      << d(s.steering_angle) << '\n';
+      << d(s.stamp) << ',' << s.left_ticks << ',' << s.right_ticks << ',' << d(s.steering_angle)
+      << '\n';
 }
 
 void RecordingWriter::write_imu(const core::ImuSample& s) {
@@ -99,11 +101,11 @@ void RecordingWriter::write_ground_truth(const sim::GroundTruth& g) {
                      "right_row,lateral_error,heading_error,plants_crushed,left_offset,"
                      "left_heading,right_offset,right_heading");
   const auto& T = g.T_world_base;
-  out << d(g.stamp) << ',' << d(T.x) << ',' << d(T.y) << ',' << d(T.theta) << ',' << d(g.z)
-      << ',' << d(g.roll) << ',' << d(g.pitch) << ',' << d(g.twist.v) << ',' << d(g.twist.vy)
-      << ',' << d(g.twist.omega) << ',' << core::enum_name(g.place) << ',' << g.block << ','
-      << g.corridor << ',' << g.left_row << ',' << g.right_row << ',' << d(g.lateral_error)
-      << ',' << d(g.heading_error) << ',' << g.plants_crushed;
+  out << d(g.stamp) << ',' << d(T.x) << ',' << d(T.y) << ',' << d(T.theta) << ',' << d(g.z) << ','
+      << d(g.roll) << ',' << d(g.pitch) << ',' << d(g.twist.v) << ',' << d(g.twist.vy) << ','
+      << d(g.twist.omega) << ',' << core::enum_name(g.place) << ',' << g.block << ',' << g.corridor
+      << ',' << g.left_row << ',' << g.right_row << ',' << d(g.lateral_error) << ','
+      << d(g.heading_error) << ',' << g.plants_crushed;
   write_row_line(out, g, g.left_row);
   write_row_line(out, g, g.right_row);
   out << '\n';

@@ -37,8 +37,9 @@ std::string find_position(const YAML::Node& root, std::string_view path) {
     if (!n) return "";
     if (part.front() == '[') {
       std::size_t i = 0;
-      if (!n.IsSequence() || std::from_chars(part.data() + 1, part.data() + part.size(), i).ec !=
-                                 std::errc() || i >= n.size())
+      if (!n.IsSequence() ||
+          std::from_chars(part.data() + 1, part.data() + part.size(), i).ec != std::errc() ||
+          i >= n.size())
         return "";
       n = n[i];
       pos = yaml_position(n);
@@ -74,7 +75,8 @@ std::string yaml_position(const YAML::Node& node) {
 
 void yaml_fail(const std::string& file, const YAML::Node& node, const std::string& path,
                const std::string& reason) {
-  throw InputError(file, yaml_position(node), one_line(path.empty() ? reason : path + ": " + reason));
+  throw InputError(file, yaml_position(node),
+                   one_line(path.empty() ? reason : path + ": " + reason));
 }
 
 std::string yaml_describe(const YAML::Node& node) {
@@ -102,9 +104,12 @@ bool yaml_scalar_double(const std::string& s, double& out) {
 
 bool yaml_scalar_bool(const std::string& s, bool& out) {
   // Only the YAML 1.2 spellings: "yes" / "on" are too easily a typo for a string.
-  if (s == "true" || s == "True" || s == "TRUE") out = true;
-  else if (s == "false" || s == "False" || s == "FALSE") out = false;
-  else return false;
+  if (s == "true" || s == "True" || s == "TRUE")
+    out = true;
+  else if (s == "false" || s == "False" || s == "FALSE")
+    out = false;
+  else
+    return false;
   return true;
 }
 
@@ -140,10 +145,10 @@ void yaml_check_keys(const std::string& file, const YAML::Node& node, const std:
       if (!list.empty()) list += ", ";
       list += v;
     }
-    throw InputError(file, yaml_position(kv.first),
-                     one_line("unknown key " + quote_for_message(key) +
-                              (path.empty() ? "" : " in '" + path + "'") + " (valid: " + list +
-                              ")"));
+    throw InputError(
+        file, yaml_position(kv.first),
+        one_line("unknown key " + quote_for_message(key) +
+                 (path.empty() ? "" : " in '" + path + "'") + " (valid: " + list + ")"));
   }
 }
 

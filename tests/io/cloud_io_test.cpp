@@ -17,7 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(float a, float b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 void expect_identical(const core::PointCloud& a, const core::PointCloud& b) {
   ASSERT_EQ(a.size(), b.size());
@@ -45,8 +47,12 @@ core::PointCloud random_cloud(std::size_t n, std::uint64_t seed) {
   c.has_ring = true;
   c.has_time = false;
   for (std::size_t i = 0; i < n; ++i) {
-    core::PointXYZIRT p{u(rng), u(rng), u(rng) / 10.0f, std::abs(u(rng)),
-                        static_cast<std::uint16_t>(i % 128), static_cast<std::uint16_t>(i % 2048),
+    core::PointXYZIRT p{u(rng),
+                        u(rng),
+                        u(rng) / 10.0f,
+                        std::abs(u(rng)),
+                        static_cast<std::uint16_t>(i % 128),
+                        static_cast<std::uint16_t>(i % 2048),
                         static_cast<float>(i) * 1e-7f};
     c.points.push_back(p);
   }
@@ -139,16 +145,19 @@ TEST_F(CloudIoTest, BadFilesGiveOneLineErrors) {
   const std::string head =
       "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 4\nHEIGHT 1\n"
       "POINTS 4\nDATA ";
-  EXPECT_NE(error_of(write("trunc.pcd", head + "binary\n" + std::string(20, 'a'))).find("truncated"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(write("trunc.pcd", head + "binary\n" + std::string(20, 'a'))).find("truncated"),
+      std::string::npos);
   EXPECT_NE(error_of(write("comp.pcd", head + "binary_compressed\n" + std::string(5, 'a')))
                 .find("compressed"),
             std::string::npos);
-  EXPECT_NE(error_of(write("pts.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4\nPOINTS 5\n"
+  EXPECT_NE(error_of(write("pts.pcd",
+                           "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4\nPOINTS 5\n"
                            "DATA ascii\n"))
                 .find("POINTS"),
             std::string::npos);
-  EXPECT_NE(error_of(write("ty.pcd", "FIELDS x y z\nSIZE 4 4 3\nTYPE F F F\nWIDTH 0\nPOINTS 0\n"
+  EXPECT_NE(error_of(write("ty.pcd",
+                           "FIELDS x y z\nSIZE 4 4 3\nTYPE F F F\nWIDTH 0\nPOINTS 0\n"
                            "DATA ascii\n"))
                 .find("field z"),
             std::string::npos);
@@ -177,8 +186,8 @@ TEST_F(CloudIoTest, PointsCsvHeaderlessStampAndErrors) {
   const auto a = read_points_csv(write("a.csv", "1,2\n3,4\n"));
   ASSERT_EQ(a.size(), 1u);
   EXPECT_EQ(a[0].size(), 2u);
-  const auto b = read_points_csv(
-      write("b.csv", "x,stamp,y,frame\n1,10.5,2,a\n3,11,4,b\n5,12,6,a\n"));
+  const auto b =
+      read_points_csv(write("b.csv", "x,stamp,y,frame\n1,10.5,2,a\n3,11,4,b\n5,12,6,a\n"));
   ASSERT_EQ(b.size(), 2u);
   EXPECT_EQ(b[0].size(), 2u);
   EXPECT_EQ(b[0].stamp, 10.5);
@@ -189,8 +198,7 @@ TEST_F(CloudIoTest, PointsCsvHeaderlessStampAndErrors) {
     read_points_csv(f);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              f.string() + ":4: expected a number in column 'y', got 'zz'");
+    EXPECT_EQ(std::string(e.what()), f.string() + ":4: expected a number in column 'y', got 'zz'");
   }
   EXPECT_THROW(read_points_csv(write("cols.csv", "x,y\n1,2\n1,2,3\n")), InputError);
   EXPECT_THROW(read_points_csv(write("unk.csv", "x,y,w\n1,2,3\n")), InputError);

@@ -37,8 +37,8 @@ TEST(Progress, PlainOutputSkipsNoStepAndFinishesInDestructor) {
   std::ostringstream out;
   {
     Progress p("eval", 10.0, out);
-    p.update(5.5);  // jumps straight to 50 %
-    p.update(5.6);  // same step: nothing
+    p.update(5.5);   // jumps straight to 50 %
+    p.update(5.6);   // same step: nothing
     p.update(-3.0);  // clamped, earlier step: nothing
   }
   const auto l = lines(out.str());

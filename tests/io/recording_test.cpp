@@ -210,8 +210,8 @@ TEST_F(RecordingTest, MalformedCsvNamesFileAndLine) {
     read_recording(dir_);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), (dir_ / "ground_truth.csv").string() +
-                                         ":5: expected 22 columns, got 2");
+    EXPECT_EQ(std::string(e.what()),
+              (dir_ / "ground_truth.csv").string() + ":5: expected 22 columns, got 2");
   }
   std::ofstream(dir_ / "manifest.yaml") << "format: something\n";
   EXPECT_THROW(read_recording(dir_), InputError);

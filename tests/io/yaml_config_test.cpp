@@ -123,7 +123,8 @@ TEST(YamlConfig, PartialFileKeepsDefaults) {
 
 TEST(YamlConfig, UnknownKeyNamesPathAndValidKeys) {
   expect_error("count: 1\ncont: 2\n", "file.yaml:2:1: ", "unknown key 'cont'");
-  expect_error("leaf:\n  w: 1\n  ww: 2\n", "file.yaml:3:3: ", "unknown key 'ww' in 'leaf' (valid: w, tag)");
+  expect_error("leaf:\n  w: 1\n  ww: 2\n",
+               "file.yaml:3:3: ", "unknown key 'ww' in 'leaf' (valid: w, tag)");
   expect_error("leaves:\n  - {w: 1, x: 2}\n", "file.yaml:2:12: ", "in 'leaves[0]'");
 }
 
@@ -168,8 +169,8 @@ TEST(YamlConfig, IgnoredKeysAndNoValidate) {
 
 class YamlFileTest : public ::testing::Test {
  protected:
-  std::filesystem::path dir_ = std::filesystem::temp_directory_path() /
-                               ("rownav_yaml_" + std::to_string(::getpid()));
+  std::filesystem::path dir_ =
+      std::filesystem::temp_directory_path() / ("rownav_yaml_" + std::to_string(::getpid()));
   void SetUp() override { std::filesystem::create_directories(dir_); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::filesystem::path write(const std::string& name, const std::string& text) {
@@ -211,7 +212,8 @@ TEST_F(YamlFileTest, SectionOfAFileAndSaveLoad) {
     load_config<Leaf>(bad, "leaf");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), bad.string() + ":3:3: unknown key 'ww' in 'leaf' (valid: w, tag)");
+    EXPECT_EQ(std::string(e.what()),
+              bad.string() + ":3:3: unknown key 'ww' in 'leaf' (valid: w, tag)");
   }
   const auto neg = write("neg.yaml", "leaf:\n  tag: q\n  w: -3\n");
   try {

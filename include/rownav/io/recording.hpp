@@ -74,8 +74,8 @@ class RecordingWriter {
 struct Recording {
   std::filesystem::path dir;
   YAML::Node manifest;
-  std::vector<double> cloud_stamps;     ///< [s] from lidar/frames.csv
-  std::vector<std::string> cloud_files; ///< relative to dir/lidar
+  std::vector<double> cloud_stamps;      ///< [s] from lidar/frames.csv
+  std::vector<std::string> cloud_files;  ///< relative to dir/lidar
   std::vector<core::Scan2D> scans;
   std::vector<core::WheelEncoderSample> encoders;
   std::vector<core::ImuSample> imu;

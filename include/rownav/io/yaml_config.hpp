@@ -45,8 +45,7 @@ bool yaml_scalar_bool(const std::string& s, bool& out);
                                        const std::string& prefix, const std::string& message);
 /// Checks `node` is a map whose keys are all in `valid` or `ignore`, without duplicates.
 void yaml_check_keys(const std::string& file, const YAML::Node& node, const std::string& path,
-                     const std::vector<std::string>& valid,
-                     const std::vector<std::string>& ignore);
+                     const std::vector<std::string>& valid, const std::vector<std::string>& ignore);
 /// Shortest round-trip text of a double, YAML spelling for inf / nan.
 std::string yaml_format_double(double v);
 
@@ -55,8 +54,8 @@ concept EigenFixedVector = requires {
   typename T::Scalar;
   T::RowsAtCompileTime;
   T::ColsAtCompileTime;
-} && (T::ColsAtCompileTime == 1 || T::RowsAtCompileTime == 1) &&
-                           (T::SizeAtCompileTime > 0);
+}
+&&(T::ColsAtCompileTime == 1 || T::RowsAtCompileTime == 1) && (T::SizeAtCompileTime > 0);
 
 template <class T>
 struct IsStdVector : std::false_type {};
@@ -66,7 +65,9 @@ struct IsStdVector<std::vector<T, A>> : std::true_type {};
 struct KeyCollector {
   std::vector<std::string> names;
   template <class T>
-  void operator()(std::string_view name, const T&) { names.emplace_back(name); }
+  void operator()(std::string_view name, const T&) {
+    names.emplace_back(name);
+  }
 };
 
 template <class T>
@@ -100,8 +101,9 @@ void decode_integer(const YAML::Node& n, T& out, const std::string& file, const 
     const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
     ok = ec == std::errc() && end == v.data() + v.size();
     if (ok && !std::in_range<T>(x))
-      yaml_fail(file, n, path, "out of range for this field (got " + s + ", must be >= " +
-                                   std::to_string(std::numeric_limits<T>::min()) + ")");
+      yaml_fail(file, n, path,
+                "out of range for this field (got " + s +
+                    ", must be >= " + std::to_string(std::numeric_limits<T>::min()) + ")");
     out = static_cast<T>(x);
   } else {
     unsigned long long x = 0;
@@ -109,8 +111,9 @@ void decode_integer(const YAML::Node& n, T& out, const std::string& file, const 
     ok = (ec == std::errc() || ec == std::errc::result_out_of_range) &&
          end == v.data() + v.size() && !v.empty();
     if (ok && (ec != std::errc() || !std::in_range<T>(x)))
-      yaml_fail(file, n, path, "out of range for this field (got " + s + ", must be <= " +
-                                   std::to_string(std::numeric_limits<T>::max()) + ")");
+      yaml_fail(file, n, path,
+                "out of range for this field (got " + s +
+                    ", must be <= " + std::to_string(std::numeric_limits<T>::max()) + ")");
     out = static_cast<T>(x);
   }
   if (!ok) yaml_fail(file, n, path, "expected an integer, got " + yaml_describe(n));
@@ -124,8 +127,9 @@ void decode_value(const YAML::Node& n, T& out, const std::string& file, const st
     if (!n.IsSequence()) yaml_fail(file, n, path, "expected a list, got " + yaml_describe(n));
     if constexpr (EigenFixedVector<T>) {
       if (n.size() != static_cast<std::size_t>(T::SizeAtCompileTime))
-        yaml_fail(file, n, path, "expected a list of " + std::to_string(T::SizeAtCompileTime) +
-                                     " numbers, got " + std::to_string(n.size()));
+        yaml_fail(file, n, path,
+                  "expected a list of " + std::to_string(T::SizeAtCompileTime) + " numbers, got " +
+                      std::to_string(n.size()));
       for (std::size_t i = 0; i < n.size(); ++i) {
         typename T::Scalar x{};
         decode_value(n[i], x, file, path + "[" + std::to_string(i) + "]");
@@ -147,8 +151,9 @@ void decode_value(const YAML::Node& n, T& out, const std::string& file, const st
         yaml_fail(file, n, path, "expected true or false, got " + yaml_describe(n));
     } else if constexpr (core::NamedEnum<T>) {
       if (!core::enum_from_name(std::string_view(n.Scalar()), out))
-        yaml_fail(file, n, path, "unknown value " + yaml_describe(n) + " (valid: " +
-                                     core::enum_name_list<T>() + ")");
+        yaml_fail(
+            file, n, path,
+            "unknown value " + yaml_describe(n) + " (valid: " + core::enum_name_list<T>() + ")");
     } else if constexpr (std::is_integral_v<T>) {
       decode_integer(n, out, file, path);
     } else if constexpr (std::is_floating_point_v<T>) {
@@ -184,8 +189,10 @@ YAML::Node encode_value(const T& v) {
   } else if constexpr (IsStdVector<T>::value || EigenFixedVector<T>) {
     YAML::Node out(YAML::NodeType::Sequence);
     for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(v.size()); ++i) {
-      if constexpr (EigenFixedVector<T>) out.push_back(encode_value(v(i)));
-      else out.push_back(encode_value(static_cast<typename T::value_type>(v[i])));
+      if constexpr (EigenFixedVector<T>)
+        out.push_back(encode_value(v(i)));
+      else
+        out.push_back(encode_value(static_cast<typename T::value_type>(v[i])));
     }
     constexpr bool flow = EigenFixedVector<T> || !core::HasFields<typename T::value_type>;
     if (flow) out.SetStyle(YAML::EmitterStyle::Flow);
