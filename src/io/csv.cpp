@@ -86,6 +86,7 @@ CsvReader::CsvReader(const std::filesystem::path& file) : file_(file.string()) {
   std::ostringstream ss;
   ss << in.rdbuf();
   text_ = ss.str();
+  if (text_.rfind("\xEF\xBB\xBF", 0) == 0) pos_ = 3;  // UTF-8 byte-order mark (spreadsheet exports)
 }
 
 bool CsvReader::next() {

@@ -135,6 +135,8 @@ TEST(YamlConfig, WrongTypesPointAtTheValue) {
   expect_error("small: 256\n", "file.yaml:1:8: ", "small: out of range");
   expect_error("seed: 99999999999999999999999\n", "file.yaml:1:7: ", "seed: out of range");
   expect_error("d: [1, 2]\n", "file.yaml:1:4: ", "d: expected a value, got a list");
+  expect_error("f: 1e300\n", "file.yaml:1:4: ", "f: out of range");
+  expect_error("d: ~\n", "file.yaml:1:4: ", "d: expected a value, got nothing");
   expect_error("flag: yes\n", "file.yaml:1:7: ", "flag: expected true or false");
   expect_error("kind: forest\n", "file.yaml:1:7: ",
                "kind: unknown value 'forest' (valid: vineyard, orchard, row_crop, layout)");

@@ -160,6 +160,8 @@ void decode_value(const YAML::Node& n, T& out, const std::string& file, const st
       double x = 0.0;
       if (!yaml_scalar_double(n.Scalar(), x))
         yaml_fail(file, n, path, "expected a number, got " + yaml_describe(n));
+      if (std::isfinite(x) && !std::isfinite(static_cast<T>(x)))
+        yaml_fail(file, n, path, "out of range for this field (got " + n.Scalar() + ")");
       out = static_cast<T>(x);
     } else if constexpr (std::is_same_v<T, std::string>) {
       out = n.Scalar();
