@@ -119,6 +119,25 @@ TEST_F(CloudIoTest, ForeignPcdWithOusterTimeAndDoubleXyz) {
   EXPECT_FLOAT_EQ(c.points[1].z, -3.0f);
 }
 
+TEST_F(CloudIoTest, BinaryCompressedPcd) {
+  // binary_compressed stores the fields one after the other (x x y y z z), LZF-compressed.
+  // An LZF stream of only literal runs is valid: control byte n-1, then n raw bytes.
+  const float xyz[6] = {1.0f, 4.0f, 2.0f, 5.0f, 3.0f, 6.0f};  // x0 x1 y0 y1 z0 z1
+  std::string data(1, static_cast<char>(sizeof xyz - 1));
+  data.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  const std::uint32_t sizes[2] = {static_cast<std::uint32_t>(data.size()), sizeof xyz};
+  const std::string head =
+      "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\n"
+      "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA binary_compressed\n";
+  const auto c = read_cloud(write(
+      "z.pcd", head + std::string(reinterpret_cast<const char*>(sizes), sizeof sizes) + data));
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c.points[0].x, 1.0f);
+  EXPECT_EQ(c.points[1].y, 5.0f);
+  EXPECT_EQ(c.points[1].z, 6.0f);
+  EXPECT_FALSE(c.has_intensity || c.has_ring || c.has_time);
+}
+
 TEST_F(CloudIoTest, PlyAsciiWithIntensity) {
   const auto f = write("c.ply",
                        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
