@@ -1,0 +1,276 @@
+// read_cloud: the one translation unit that includes PCL (slow headers).
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "rownav/io/cloud_io.hpp"
+#include "rownav/io/csv.hpp"
+#include "rownav/io/input_error.hpp"
+
+namespace rownav::io {
+namespace {
+
+bool parse_rownav_comment(const std::string& line, core::PointCloud& out) {
+  const auto stamp = line.find("stamp="), flags = line.find(" flags="),
+             frame = line.find(" frame_id=");
+  if (stamp == std::string::npos || flags == std::string::npos || frame == std::string::npos ||
+      flags < stamp || frame < flags)
+    return false;
+  parse_double(std::string_view(line).substr(stamp + 6, flags - stamp - 6), out.stamp);
+  const std::string f = line.substr(flags + 7, frame - flags - 7);
+  out.has_intensity = f.find('i') != std::string::npos;
+  out.has_ring = f.find('r') != std::string::npos;
+  out.has_time = f.find('t') != std::string::npos;
+  out.frame_id = line.substr(frame + 10);
+  return true;
+}
+
+/// Value of one field element as a double, whatever its PCL datatype.
+double field_value(const std::uint8_t* p, std::uint8_t datatype) {
+  auto get = [p]<class T>(T) {
+    T v;
+    std::memcpy(&v, p, sizeof(T));
+    return static_cast<double>(v);
+  };
+  switch (datatype) {
+    case pcl::PCLPointField::INT8:
+      return get(std::int8_t{});
+    case pcl::PCLPointField::UINT8:
+      return get(std::uint8_t{});
+    case pcl::PCLPointField::INT16:
+      return get(std::int16_t{});
+    case pcl::PCLPointField::UINT16:
+      return get(std::uint16_t{});
+    case pcl::PCLPointField::INT32:
+      return get(std::int32_t{});
+    case pcl::PCLPointField::UINT32:
+      return get(std::uint32_t{});
+    case pcl::PCLPointField::FLOAT32:
+      return get(float{});
+    case pcl::PCLPointField::FLOAT64:
+      return get(double{});
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& c, std::string_view name) {
+  for (const auto& f : c.fields)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+bool is_integer_type(std::uint8_t t) {
+  return t != pcl::PCLPointField::FLOAT32 && t != pcl::PCLPointField::FLOAT64;
+}
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+using PcdKeys = std::map<std::string, std::vector<std::string>>;
+
+[[noreturn]] void bad_pcd(const std::string& name, const std::string& why) {
+  throw InputError(name, "", "not a valid PCD file (" + why + ")");
+}
+
+/// Header lines up to DATA; `data_offset` = first byte after the DATA line. Reads rownav's own
+/// comment "# rownav stamp=<s> flags=<irt|-> frame_id=<id>" into `meta` (true if found).
+PcdKeys read_pcd_keys(std::istream& in, const std::string& name, core::PointCloud& meta,
+                      bool& has_meta) {
+  PcdKeys keys;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.rfind("# rownav ", 0) == 0) has_meta = parse_rownav_comment(line, meta);
+    if (line.empty() || line[0] == '#') continue;
+    auto w = words(line);
+    if (w.empty()) continue;
+    const std::string key = w[0];
+    w.erase(w.begin());
+    if (keys.count(key)) bad_pcd(name, "duplicate " + key);
+    keys[key] = w;
+    if (key == "DATA") return keys;
+  }
+  bad_pcd(name, "no DATA line");
+}
+
+/// Bytes per point; checks FIELDS / SIZE / TYPE / COUNT agree.
+std::int64_t pcd_point_step(PcdKeys& keys, const std::string& name) {
+  const std::size_t nf = keys["FIELDS"].size();
+  if (!keys.count("COUNT")) keys["COUNT"] = std::vector<std::string>(nf, "1");
+  if (nf == 0 || keys["SIZE"].size() != nf || keys["TYPE"].size() != nf ||
+      keys["COUNT"].size() != nf)
+    bad_pcd(name, "FIELDS, SIZE, TYPE and COUNT disagree");
+  std::int64_t step = 0;
+  for (std::size_t i = 0; i < nf; ++i) {
+    const std::string& sz = keys["SIZE"][i];
+    const std::string& ty = keys["TYPE"][i];
+    std::int64_t size = 0, count = 0;
+    const bool ok =
+        parse_int64(sz, size) && parse_int64(keys["COUNT"][i], count) && count >= 1 &&
+        count < 1000000 &&
+        ((ty == "F" && (size == 4 || size == 8)) ||
+         ((ty == "I" || ty == "U") && (size == 1 || size == 2 || size == 4 || size == 8)));
+    if (!ok) bad_pcd(name, "field " + keys["FIELDS"][i] + ": TYPE " + ty + " SIZE " + sz);
+    step += size * count;
+  }
+  return step;
+}
+
+/// Checks a PCD file before PCL sees it: PCL 1.13 crashes on some malformed files.
+bool check_pcd(const std::filesystem::path& file, const std::string& name, core::PointCloud& meta) {
+  std::ifstream in(file, std::ios::binary);
+  bool has_meta = false;
+  PcdKeys keys = read_pcd_keys(in, name, meta, has_meta);
+  const std::uint64_t data_offset = static_cast<std::uint64_t>(in.tellg());
+  for (const char* k : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS"})
+    if (!keys.count(k)) bad_pcd(name, std::string("no ") + k);
+  const std::int64_t step = pcd_point_step(keys, name);
+  if (!keys.count("HEIGHT")) keys["HEIGHT"] = {"1"};
+  std::int64_t width = 0, height = 0, points = 0;
+  if (keys["WIDTH"].size() != 1 || keys["HEIGHT"].size() != 1 || keys["POINTS"].size() != 1 ||
+      !parse_int64(keys["WIDTH"][0], width) || !parse_int64(keys["HEIGHT"][0], height) ||
+      !parse_int64(keys["POINTS"][0], points) || width < 0 || height < 0 ||
+      width * height != points)
+    bad_pcd(name, "WIDTH x HEIGHT != POINTS");
+  const auto& data = keys["DATA"];
+  const std::uint64_t available = std::filesystem::file_size(file) - data_offset;
+  const auto need = static_cast<std::uint64_t>(points * step);
+  if (data.size() == 1 && data[0] == "ascii") return has_meta;
+  if (data.size() == 1 && data[0] == "binary") {
+    if (available < need) bad_pcd(name, "binary data truncated");
+    return has_meta;
+  }
+  if (data.size() != 1 || data[0] != "binary_compressed")
+    bad_pcd(name, "DATA must be ascii, binary or binary_compressed");
+  std::uint32_t sizes[2] = {0, 0};
+  if (need > 0 && (available < 8 || !in.read(reinterpret_cast<char*>(sizes), 8) ||
+                   sizes[1] != need || available < 8 + std::uint64_t{sizes[0]}))
+    bad_pcd(name, "compressed data truncated or inconsistent");
+  return has_meta;
+}
+
+/// Per-point time [s] relative to the stamp; sets has_time and possibly the stamp.
+void map_time(const pcl::PCLPointCloud2& c, std::vector<double>& times, core::PointCloud& out) {
+  const pcl::PCLPointField* t = find_field(c, "t");
+  double scale = 1.0;
+  if (t && is_integer_type(t->datatype)) scale = 1e-9;  // Ouster: uint32 ns since sweep start
+  if (!t) t = find_field(c, "time");
+  if (!t) t = find_field(c, "timestamp");
+  if (!t) return;
+  out.has_time = true;
+  const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
+  times.resize(n);
+  double earliest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t row = i / c.width, col = i % c.width;
+    const auto* p = c.data.data() + row * c.row_step + col * c.point_step + t->offset;
+    times[i] = field_value(p, t->datatype) * scale;
+    if (std::isfinite(times[i])) earliest = std::min(earliest, times[i]);
+  }
+  if (std::isfinite(earliest) && earliest > 1e6) {  // absolute timestamps
+    out.stamp = earliest;
+    for (auto& v : times) v -= earliest;
+  }
+}
+
+core::PointCloud convert(const pcl::PCLPointCloud2& c, const std::string& name) {
+  const auto* fx = find_field(c, "x");
+  const auto* fy = find_field(c, "y");
+  const auto* fz = find_field(c, "z");
+  if (!fx || !fy || !fz) throw InputError(name, "", "no x / y / z fields");
+  const auto* fi = find_field(c, "intensity");
+  const auto* fr = find_field(c, "ring");
+  const auto* fc = find_field(c, "column");
+  core::PointCloud out;
+  out.has_intensity = fi != nullptr;
+  out.has_ring = fr != nullptr;
+  std::vector<double> times;
+  map_time(c, times, out);
+  const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
+  if (c.data.size() < static_cast<std::size_t>(c.row_step) * c.height)
+    throw InputError(name, "", "truncated point data");
+  out.points.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto* base = c.data.data() + (i / c.width) * c.row_step + (i % c.width) * c.point_step;
+    auto& p = out.points[i];
+    p.x = static_cast<float>(field_value(base + fx->offset, fx->datatype));
+    p.y = static_cast<float>(field_value(base + fy->offset, fy->datatype));
+    p.z = static_cast<float>(field_value(base + fz->offset, fz->datatype));
+    if (fi) p.intensity = static_cast<float>(field_value(base + fi->offset, fi->datatype));
+    if (fr) p.ring = static_cast<std::uint16_t>(field_value(base + fr->offset, fr->datatype));
+    if (fc) p.column = static_cast<std::uint16_t>(field_value(base + fc->offset, fc->datatype));
+    if (!times.empty()) p.time = static_cast<float>(times[i]);
+  }
+  out.drop_invalid();
+  return out;
+}
+
+/// Silences PCL's console errors while reading: our InputError says it in one line.
+class QuietPcl {
+ public:
+  QuietPcl() : level_(pcl::console::getVerbosityLevel()) {
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  }
+  ~QuietPcl() { pcl::console::setVerbosityLevel(level_); }
+  QuietPcl(const QuietPcl&) = delete;
+  QuietPcl& operator=(const QuietPcl&) = delete;
+
+ private:
+  pcl::console::VERBOSITY_LEVEL level_;
+};
+
+}  // namespace
+
+core::PointCloud read_cloud(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(
+        name, "",
+        std::filesystem::exists(file, ec) ? "not a regular file" : "cannot open: no such file");
+  if (std::filesystem::file_size(file, ec) == 0) throw InputError(name, "", "empty file");
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  pcl::PCLPointCloud2 cloud;
+  core::PointCloud meta;
+  const bool has_meta = ext == ".pcd" && check_pcd(file, name, meta);
+  {
+    const QuietPcl quiet;
+    if (ext == ".pcd") {
+      pcl::PCDReader reader;
+      if (reader.read(name, cloud) < 0) throw InputError(name, "", "not a valid PCD file");
+    } else if (ext == ".ply") {
+      pcl::PLYReader reader;
+      if (reader.read(name, cloud) < 0) throw InputError(name, "", "not a valid PLY file");
+    } else {
+      throw InputError(name, "", "unknown cloud format '" + ext + "' (valid: .pcd, .ply)");
+    }
+  }
+  core::PointCloud out = convert(cloud, name);
+  if (has_meta) {  // written by write_cloud_pcd: restore what PCD has no field for
+    out.stamp = meta.stamp;
+    out.frame_id = meta.frame_id;
+    out.has_intensity = meta.has_intensity;
+    out.has_ring = meta.has_ring;
+    out.has_time = meta.has_time;
+  }
+  return out;
+}
+
+}  // namespace rownav::io
