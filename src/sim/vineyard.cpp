@@ -24,7 +24,7 @@ StageShape stage_shape(GrowthStage s) {
     case GrowthStage::medium: return {6.0, 0.8, 0.75, 4.0};
     case GrowthStage::high: break;
   }
-  return {10.0, 1.0, 1.0, 6.0};
+  return {8.0, 1.0, 1.0, 5.0};
 }
 
 int draw_count(double mean, std::mt19937_64& rng) {
@@ -76,15 +76,15 @@ double add_vine(TriangleMesh& mesh, const Eigen::Vector3d& base, const Eigen::Ve
   add_cylinder(mesh, cordon_pt - arm, cordon_pt + arm, f(0.3 * c.trunk_diameter), 4,
                SurfaceClass::trunk);
   // Vigour varies from vine to vine: the wall thickness and height are irregular along the row.
-  const double vigour = 0.6 + 0.6 * u(rng);
+  const double vigour = 0.7 + 0.6 * u(rng);
   const double bottom = cordon + 0.05;
-  const double top = bottom + (c.canopy_top - bottom) * shape.reach * std::min(1.0, 0.8 + 0.25 * vigour);
+  const double top = bottom + (c.canopy_top - bottom) * shape.reach * std::min(1.0, 0.75 + 0.25 * vigour);
   const double half_w = 0.5 * c.canopy_width * shape.size * vigour;
   const int clumps = draw_count(shape.clumps_per_m * c.plant_spacing, rng);
   for (int i = 0; i < clumps; ++i) {
     const double rv = std::min(0.5 * (top - bottom), (0.08 + 0.12 * u(rng)) * shape.size);
     const double ra = (0.1 + 0.15 * u(rng)) * shape.size;
-    const double rc = half_w * (0.5 + 0.5 * u(rng));
+    const double rc = half_w * (0.7 + 0.5 * u(rng));
     const double h = bottom + rv + u(rng) * std::max(0.0, top - bottom - 2.0 * rv);
     const V3 centre = b + f((u(rng) - 0.5) * c.plant_spacing) * along +
                       f(0.15 * half_w * n01(rng)) * across + f(h) * up;
