@@ -5,8 +5,8 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "rownav/sim/plant_geometry.hpp"
@@ -67,7 +67,8 @@ sim::RowLayout finish(RawLayout raw, const std::filesystem::path& file,
     if (std::none_of(raw.rows.begin(), raw.rows.end(), [&](auto& r) { return r.block == b; }))
       throw InputError(name, "", "block '" + b + "' has no rows");
   std::erase_if(raw.rows, [&](const RawRow& r) {
-    return !opt.blocks.empty() && std::find(opt.blocks.begin(), opt.blocks.end(), r.block) == opt.blocks.end();
+    return !opt.blocks.empty() &&
+           std::find(opt.blocks.begin(), opt.blocks.end(), r.block) == opt.blocks.end();
   });
   if (raw.rows.empty()) throw InputError(name, "", "no rows");
   std::optional<GeographicLib::LocalCartesian> enu;
@@ -121,8 +122,8 @@ Eigen::Vector2d position(const json& c, const std::string& file, const std::stri
   return p;
 }
 
-void add_line(RawLayout& raw, const json& coords, const std::string& block,
-              const std::string& file, const std::string& where) {
+void add_line(RawLayout& raw, const json& coords, const std::string& block, const std::string& file,
+              const std::string& where) {
   if (!coords.is_array() || coords.size() < 2)
     throw InputError(file, where, "LineString needs at least 2 positions");
   RawRow row{{}, block, "", where};
@@ -135,7 +136,8 @@ std::string string_property(const json& props, const char* key) {
   return props[key].is_string() ? props[key].get<std::string>() : props[key].dump();
 }
 
-void read_feature(RawLayout& raw, const json& f, const std::string& file, const std::string& where) {
+void read_feature(RawLayout& raw, const json& f, const std::string& file,
+                  const std::string& where) {
   if (!f.is_object()) throw InputError(file, where, "feature is not an object");
   const json& props = f.contains("properties") ? f["properties"] : json();
   if (!f.contains("geometry") || f["geometry"].is_null()) return;
@@ -148,7 +150,8 @@ void read_feature(RawLayout& raw, const json& f, const std::string& file, const 
   if (type == "LineString" && (role.empty() || role == "row")) {
     add_line(raw, g["coordinates"], block, file, where);
   } else if (type == "MultiLineString" && (role.empty() || role == "row")) {
-    if (!g["coordinates"].is_array()) throw InputError(file, where, "MultiLineString needs an array");
+    if (!g["coordinates"].is_array())
+      throw InputError(file, where, "MultiLineString needs an array");
     for (const auto& part : g["coordinates"]) add_line(raw, part, block, file, where);
   } else if (type == "Point") {
     sim::PlantKind kind;
@@ -196,14 +199,22 @@ CsvColumns csv_columns(const std::vector<std::string>& header, const std::string
   for (std::size_t i = 0; i < header.size(); ++i) {
     const auto& h = header[i];
     const int idx = static_cast<int>(i);
-    if (h == "row") c.row = idx;
-    else if (h == "x") c.x = idx;
-    else if (h == "y") c.y = idx;
-    else if (h == "lon") lon = idx;
-    else if (h == "lat") lat = idx;
-    else if (h == "kind") c.kind = idx;
-    else if (h == "block") c.block = idx;
-    else throw InputError(file, where, "unknown column '" + h + "'");
+    if (h == "row")
+      c.row = idx;
+    else if (h == "x")
+      c.x = idx;
+    else if (h == "y")
+      c.y = idx;
+    else if (h == "lon")
+      lon = idx;
+    else if (h == "lat")
+      lat = idx;
+    else if (h == "kind")
+      c.kind = idx;
+    else if (h == "block")
+      c.block = idx;
+    else
+      throw InputError(file, where, "unknown column '" + h + "'");
   }
   if (lon >= 0 && lat >= 0 && c.x < 0 && c.y < 0) c.geographic = true, c.x = lon, c.y = lat;
   if (c.row < 0 || c.x < 0 || c.y < 0)
@@ -215,8 +226,9 @@ CsvColumns csv_columns(const std::vector<std::string>& header, const std::string
 void csv_line(RawLayout& raw, const CsvColumns& c, const std::vector<std::string>& cells,
               const std::string& file, const std::string& where) {
   if (cells.size() != c.count)
-    throw InputError(file, where, "expected " + std::to_string(c.count) + " fields, got " +
-                                      std::to_string(cells.size()));
+    throw InputError(
+        file, where,
+        "expected " + std::to_string(c.count) + " fields, got " + std::to_string(cells.size()));
   const auto at = [&](int i) { return cells[static_cast<std::size_t>(i)]; };
   const Eigen::Vector2d p(csv_number(at(c.x), c.geographic ? "lon" : "x", file, where),
                           csv_number(at(c.y), c.geographic ? "lat" : "y", file, where));
@@ -227,14 +239,17 @@ void csv_line(RawLayout& raw, const CsvColumns& c, const std::vector<std::string
   const std::string kind = c.kind >= 0 ? at(c.kind) : "row";
   sim::PlantKind pk;
   if (kind == "row") {
-    auto it = std::find_if(raw.rows.begin(), raw.rows.end(), [&](auto& r) { return r.label == label; });
+    auto it =
+        std::find_if(raw.rows.begin(), raw.rows.end(), [&](auto& r) { return r.label == label; });
     if (it == raw.rows.end()) it = raw.rows.insert(raw.rows.end(), RawRow{{}, block, label, where});
     if (it->block != block) throw InputError(file, where, "row '" + label + "' changes block");
     it->points.push_back(p);
   } else if (plant_kind(kind, pk)) {
     raw.plants.push_back({p, pk, label, where});
   } else {
-    throw InputError(file, where, "kind: unknown '" + kind + "' (expected row, vine, tree, crop, post or end_post)");
+    throw InputError(
+        file, where,
+        "kind: unknown '" + kind + "' (expected row, vine, tree, crop, post or end_post)");
   }
 }
 
@@ -258,7 +273,8 @@ sim::RowLayout read_geojson_layout(const std::filesystem::path& file,
   return finish(std::move(raw), file, options);
 }
 
-sim::RowLayout read_csv_layout(const std::filesystem::path& file, const LayoutReadOptions& options) {
+sim::RowLayout read_csv_layout(const std::filesystem::path& file,
+                               const LayoutReadOptions& options) {
   const std::string name = file.string();
   std::istringstream in(file_text(file));
   RawLayout raw;
@@ -277,19 +293,23 @@ sim::RowLayout read_csv_layout(const std::filesystem::path& file, const LayoutRe
   }
   if (!columns) throw InputError(name, "", "no header line");
   for (const auto& r : raw.rows)
-    if (r.points.size() < 2) throw InputError(name, r.where, "row '" + r.label + "' has fewer than 2 points");
+    if (r.points.size() < 2)
+      throw InputError(name, r.where, "row '" + r.label + "' has fewer than 2 points");
   for (const auto& p : raw.plants)
-    if (std::none_of(raw.rows.begin(), raw.rows.end(), [&](auto& r) { return r.label == p.row_label; }))
+    if (std::none_of(raw.rows.begin(), raw.rows.end(),
+                     [&](auto& r) { return r.label == p.row_label; }))
       throw InputError(name, p.where, "row '" + p.row_label + "' has no row points");
   return finish(std::move(raw), file, options);
 }
 
 sim::RowLayout read_layout(const std::filesystem::path& file, const LayoutReadOptions& options) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".geojson" || ext == ".json") return read_geojson_layout(file, options);
   if (ext == ".csv") return read_csv_layout(file, options);
-  throw InputError(file.string(), "", "unknown layout format '" + ext + "' (expected .geojson, .json or .csv)");
+  throw InputError(file.string(), "",
+                   "unknown layout format '" + ext + "' (expected .geojson, .json or .csv)");
 }
 
 }  // namespace rownav::io

@@ -12,9 +12,11 @@ sim::TriangleMesh read_mesh(const std::filesystem::path& file, sim::SurfaceClass
   if (!std::filesystem::is_regular_file(file)) throw InputError(name, "", "no such file");
   Assimp::Importer importer;
   // Pre-transforming bakes the node hierarchy (DAE / OBJ groups) into world-frame vertices.
-  const aiScene* scene = importer.ReadFile(
-      name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
-  if (scene == nullptr) throw InputError(name, "", std::string("unreadable mesh: ") + importer.GetErrorString());
+  const aiScene* scene =
+      importer.ReadFile(name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_PreTransformVertices);
+  if (scene == nullptr)
+    throw InputError(name, "", std::string("unreadable mesh: ") + importer.GetErrorString());
   sim::TriangleMesh out;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
@@ -26,7 +28,8 @@ sim::TriangleMesh read_mesh(const std::filesystem::path& file, sim::SurfaceClass
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices != 3) continue;
-      out.add_triangle(base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2], label);
+      out.add_triangle(base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2],
+                       label);
     }
   }
   if (out.empty()) throw InputError(name, "", "mesh has no triangles");

@@ -48,9 +48,15 @@ void LayoutConfig::validate() const {
 void FieldConfig::validate() const {
   core::check(!name.empty(), "name", "must not be empty");
   switch (kind) {
-    case FieldKind::vineyard: core::validate_nested(vineyard, "vineyard"); break;
-    case FieldKind::orchard: core::validate_nested(orchard, "orchard"); break;
-    case FieldKind::row_crop: core::validate_nested(row_crop, "row_crop"); break;
+    case FieldKind::vineyard:
+      core::validate_nested(vineyard, "vineyard");
+      break;
+    case FieldKind::orchard:
+      core::validate_nested(orchard, "orchard");
+      break;
+    case FieldKind::row_crop:
+      core::validate_nested(row_crop, "row_crop");
+      break;
     case FieldKind::layout:
       core::validate_nested(layout, "layout");
       core::validate_nested(vineyard, "vineyard");
@@ -63,9 +69,15 @@ Field generate_field(const FieldConfig& config) {
   config.validate();
   Field f;
   switch (config.kind) {
-    case FieldKind::vineyard: f = generate_vineyard(config.vineyard, config.terrain, config.seed); break;
-    case FieldKind::orchard: f = generate_orchard(config.orchard, config.terrain, config.seed); break;
-    case FieldKind::row_crop: f = generate_row_crop(config.row_crop, config.terrain, config.seed); break;
+    case FieldKind::vineyard:
+      f = generate_vineyard(config.vineyard, config.terrain, config.seed);
+      break;
+    case FieldKind::orchard:
+      f = generate_orchard(config.orchard, config.terrain, config.seed);
+      break;
+    case FieldKind::row_crop:
+      f = generate_row_crop(config.row_crop, config.terrain, config.seed);
+      break;
     case FieldKind::layout:
       throw std::invalid_argument("kind: layout needs its files; use io::build_field");
   }
@@ -77,7 +89,8 @@ void order_layout_rows(RowLayout& layout) {
   std::vector<std::size_t> order;  // new position -> old index
   for (const auto& group : rows_by_block(layout)) {
     const auto longest = *std::max_element(group.begin(), group.end(), [&](auto a, auto b) {
-      return Row{0, 0, layout.rows[a].polyline}.length() < Row{0, 0, layout.rows[b].polyline}.length();
+      return Row{0, 0, layout.rows[a].polyline}.length() <
+             Row{0, 0, layout.rows[b].polyline}.length();
     });
     const auto& ref = layout.rows[longest].polyline;
     const Eigen::Vector2d d = (ref.back() - ref.front()).normalized();
@@ -116,8 +129,8 @@ double estimate_row_spacing(const RowLayout& layout) {
   return d[d.size() / 2];
 }
 
-Field dress_layout(const RowLayout& layout, const FieldConfig& config,
-                   const TriangleMesh* instance, const TriangleMesh* terrain_mesh) {
+Field dress_layout(const RowLayout& layout, const FieldConfig& config, const TriangleMesh* instance,
+                   const TriangleMesh* terrain_mesh) {
   core::validate_nested(config.vineyard, "vineyard");
   core::validate_nested(config.terrain, "terrain");
   if (layout.rows.empty()) throw std::invalid_argument("layout: no rows");

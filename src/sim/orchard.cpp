@@ -70,7 +70,8 @@ Field generate_orchard(const OrchardConfig& config, const TerrainConfig& terrain
                                   config.trunk_height + config.crown_height, rng);
   std::bernoulli_distribution drop(config.missing_trees_percent / 100.0);
   // Trees evenly spaced as close as possible to tree_spacing, the first and last at the row ends.
-  const int per_row = std::max(2, static_cast<int>(std::lround(config.row_length / config.tree_spacing)) + 1);
+  const int per_row =
+      std::max(2, static_cast<int>(std::lround(config.row_length / config.tree_spacing)) + 1);
   const double step = config.row_length / (per_row - 1);
   for (const auto& row : field.rows) {
     const PolylinePath path(row.polyline);

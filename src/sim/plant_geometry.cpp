@@ -22,18 +22,18 @@ std::pair<V3, V3> orthonormal_basis(const V3& axis) {
 const std::array<V3, 12>& icosahedron_vertices() {
   static const std::array<V3, 12> v = [] {
     const float p = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::array<V3, 12> out{V3(-1, p, 0), V3(1, p, 0),  V3(-1, -p, 0), V3(1, -p, 0),
-                           V3(0, -1, p), V3(0, 1, p),  V3(0, -1, -p), V3(0, 1, -p),
-                           V3(p, 0, -1), V3(p, 0, 1),  V3(-p, 0, -1), V3(-p, 0, 1)};
+    std::array<V3, 12> out{V3(-1, p, 0), V3(1, p, 0), V3(-1, -p, 0), V3(1, -p, 0),
+                           V3(0, -1, p), V3(0, 1, p), V3(0, -1, -p), V3(0, 1, -p),
+                           V3(p, 0, -1), V3(p, 0, 1), V3(-p, 0, -1), V3(-p, 0, 1)};
     for (auto& x : out) x.normalize();
     return out;
   }();
   return v;
 }
 constexpr std::array<std::array<std::uint32_t, 3>, 20> kIcoFaces{
-    {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+    {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-     {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
+     {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
 constexpr std::array<std::array<std::uint32_t, 3>, 8> kOctFaces{
     {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}}};
 
@@ -63,13 +63,13 @@ void add_cylinder(TriangleMesh& mesh, const V3& a, const V3& b, float radius, in
     mesh.add_triangle(centre, base + 2 * i + 1, base + 2 * ((i + 1) % n) + 1, label);
 }
 
-void add_blob(TriangleMesh& mesh, const V3& c, const V3& radii, float jitter,
-              std::mt19937_64& rng, SurfaceClass label, bool coarse) {
+void add_blob(TriangleMesh& mesh, const V3& c, const V3& radii, float jitter, std::mt19937_64& rng,
+              SurfaceClass label, bool coarse) {
   std::uniform_real_distribution<float> push(1.0f - jitter, 1.0f + jitter);
   const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
   if (coarse) {
-    static const std::array<V3, 6> oct{V3::UnitX(), -V3::UnitX(), V3::UnitY(),
-                                       -V3::UnitY(), V3::UnitZ(), -V3::UnitZ()};
+    static const std::array<V3, 6> oct{V3::UnitX(),  -V3::UnitX(), V3::UnitY(),
+                                       -V3::UnitY(), V3::UnitZ(),  -V3::UnitZ()};
     for (const auto& v : oct) mesh.add_vertex(c + push(rng) * v.cwiseProduct(radii));
     for (const auto& f : kOctFaces) mesh.add_triangle(base + f[0], base + f[1], base + f[2], label);
     return;

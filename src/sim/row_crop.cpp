@@ -57,9 +57,12 @@ void add_leek(TriangleMesh& m, const V3& b, float h, float w, std::mt19937_64& r
 
 CropPreset crop_preset(CropType crop) {
   switch (crop) {
-    case CropType::cabbage: return {0.3, 0.45, 0.6, 0.45};
-    case CropType::leek: return {0.45, 0.13, 0.5, 0.12};
-    case CropType::maize: break;
+    case CropType::cabbage:
+      return {0.3, 0.45, 0.6, 0.45};
+    case CropType::leek:
+      return {0.45, 0.13, 0.5, 0.12};
+    case CropType::maize:
+      break;
   }
   return {0.6, 0.15, 0.75, 0.5};
 }
@@ -99,18 +102,20 @@ Field generate_row_crop(const RowCropConfig& config, const TerrainConfig& terrai
   field.row_spacing = p.row_spacing;
   field.headland_width = config.headland_width;
   field.terrain = Terrain(terrain);
-  field.rows = make_parallel_rows(config.rows, config.row_length, p.row_spacing,
-                                  config.curvature_amplitude, config.curvature_wavelength,
-                                  0.5 * p.plant_width, p.plant_height, rng);
+  field.rows =
+      make_parallel_rows(config.rows, config.row_length, p.row_spacing, config.curvature_amplitude,
+                         config.curvature_wavelength, 0.5 * p.plant_width, p.plant_height, rng);
   std::bernoulli_distribution drop(config.missing_plants_percent / 100.0);
   std::normal_distribution<double> n01(0.0, 1.0);
-  const int per_row = std::max(2, static_cast<int>(std::lround(config.row_length / p.plant_spacing)) + 1);
+  const int per_row =
+      std::max(2, static_cast<int>(std::lround(config.row_length / p.plant_spacing)) + 1);
   const double step = config.row_length / (per_row - 1);
   for (const auto& row : field.rows) {
     const PolylinePath path(row.polyline);
     for (int i = 0; i < per_row; ++i) {
       const double scale = std::max(0.3, 1.0 + config.size_variation * n01(rng));
-      const Eigen::Vector2d noise(config.position_noise * n01(rng), config.position_noise * n01(rng));
+      const Eigen::Vector2d noise(config.position_noise * n01(rng),
+                                  config.position_noise * n01(rng));
       if (drop(rng)) continue;
       const Eigen::Vector2d q = path.point(i * step) + noise;
       const V3 b(static_cast<float>(q.x()), static_cast<float>(q.y()),

@@ -96,8 +96,7 @@ void place_vines(Field& field, const VineyardConfig& c, std::mt19937_64& rng) {
   }
 }
 
-void build_vine_geometry(Field& field, const VineyardConfig& c, std::mt19937_64& rng,
-                         bool vines) {
+void build_vine_geometry(Field& field, const VineyardConfig& c, std::mt19937_64& rng, bool vines) {
   std::vector<PolylinePath> paths;
   for (const auto& row : field.rows) paths.emplace_back(row.polyline);
   for (auto& p : field.plants) {
@@ -133,8 +132,8 @@ void scatter_weeds(Field& field, WeedLevel level, double corridor_width, std::mt
   if (level == WeedLevel::none || corridor_width <= 0.05) return;
   const double margin = std::min(0.25, 0.25 * corridor_width);  // [m] kept clear beside the rows
   const bool many = level == WeedLevel::many;
-  const double density = many ? 2.0 : 0.4;        // [1/m^2]
-  const double max_height = many ? 0.5 : 0.25;    // [m]
+  const double density = many ? 2.0 : 0.4;      // [1/m^2]
+  const double max_height = many ? 0.5 : 0.25;  // [m]
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (std::size_t k = 0; k + 1 < field.rows.size(); ++k) {
     if (field.rows[k].block != field.rows[k + 1].block) continue;

@@ -20,15 +20,69 @@ struct StageShape {
 
 StageShape stage_shape(GrowthStage s) {
   switch (s) {
-    case GrowthStage::low: return {3.0, 0.55, 0.45, 2.0};
-    case GrowthStage::medium: return {6.0, 0.8, 0.75, 4.0};
-    case GrowthStage::high: break;
+    case GrowthStage::low:
+      return {3.0, 0.55, 0.45, 2.0};
+    case GrowthStage::medium:
+      return {6.0, 0.8, 0.75, 4.0};
+    case GrowthStage::high:
+      break;
   }
   return {8.0, 1.0, 1.0, 5.0};
 }
 
 int draw_count(double mean, std::mt19937_64& rng) {
   return std::max(1, std::poisson_distribution<int>(mean)(rng));
+}
+
+using V3 = Eigen::Vector3f;
+float f(double x) {
+  return static_cast<float>(x);
+}
+
+/// One vine's frame and canopy envelope.
+struct VineFrame {
+  V3 base, along, across;  // ground point, unit row direction, unit left normal
+  double bottom = 0.0, top = 0.0, half_width = 0.0;  // [m] canopy extent above the ground
+};
+
+/// Jittered ellipsoid clumps spread over the vine's canopy envelope, oriented with the row.
+void add_clumps(TriangleMesh& mesh, const VineFrame& v, int count, double size, double spacing,
+                std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const V3 up = V3::UnitZ();
+  for (int i = 0; i < count; ++i) {
+    const double rv = std::min(0.5 * (v.top - v.bottom), (0.08 + 0.12 * u(rng)) * size);
+    const double ra = (0.1 + 0.15 * u(rng)) * size;
+    const double rc = v.half_width * (0.7 + 0.5 * u(rng));
+    const double h = v.bottom + rv + u(rng) * std::max(0.0, v.top - v.bottom - 2.0 * rv);
+    const V3 centre = v.base + f((u(rng) - 0.5) * spacing) * v.along +
+                      f(0.15 * v.half_width * n01(rng)) * v.across + f(h) * up;
+    add_blob(mesh, centre, V3(f(ra), f(rc), f(rv)), 0.3f, rng, SurfaceClass::canopy);
+    // add_blob radii are in world axes; turn the 12 vertices just added into the row frame.
+    for (std::size_t k = mesh.vertices.size() - 12; k < mesh.vertices.size(); ++k) {
+      const V3 d = mesh.vertices[k] - centre;
+      mesh.vertices[k] = centre + d.x() * v.along + d.y() * v.across + d.z() * up;
+    }
+  }
+}
+
+/// Thin shoots from inside the wall protruding up to shoot_protrusion into the inter-row.
+void add_shoots(TriangleMesh& mesh, const VineFrame& v, int count, const VineyardConfig& c,
+                std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const V3 up = V3::UnitZ();
+  for (int i = 0; i < count; ++i) {
+    const double side = u(rng) < 0.5 ? -1.0 : 1.0;
+    const double h = v.bottom + u(rng) * (v.top - v.bottom);
+    const double along_off = (u(rng) - 0.5) * c.plant_spacing;
+    const V3 root =
+        v.base + f(along_off) * v.along + f(side * 0.5 * v.half_width) * v.across + f(h) * up;
+    const double reach = 1.2 * v.half_width + u(rng) * c.shoot_protrusion;
+    const V3 tip = v.base + f(along_off + 0.2 * (u(rng) - 0.5)) * v.along +
+                   f(side * reach) * v.across + f(h + 0.25 * u(rng)) * up;
+    add_spike(mesh, root, tip, 0.02f, SurfaceClass::canopy);
+  }
 }
 
 }  // namespace
@@ -59,56 +113,29 @@ void VineyardConfig::validate() const {
 
 double add_vine(TriangleMesh& mesh, const Eigen::Vector3d& base, const Eigen::Vector2d& tangent,
                 const VineyardConfig& c, std::mt19937_64& rng) {
-  using V3 = Eigen::Vector3f;
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::normal_distribution<double> n01(0.0, 1.0);
   const StageShape shape = stage_shape(c.stage);
-  const V3 b = base.cast<float>();
-  const V3 along(static_cast<float>(tangent.x()), static_cast<float>(tangent.y()), 0.0f);
-  const V3 across(-along.y(), along.x(), 0.0f);
+  VineFrame v;
+  v.base = base.cast<float>();
+  v.along = V3(f(tangent.x()), f(tangent.y()), 0.0f);
+  v.across = V3(-v.along.y(), v.along.x(), 0.0f);
   const V3 up = V3::UnitZ();
   const double cordon = c.cordon_height_min + u(rng) * (c.cordon_height_max - c.cordon_height_min);
-  const auto f = [](double x) { return static_cast<float>(x); };
-  add_cylinder(mesh, b - 0.05f * up, b + f(cordon) * up, f(0.5 * c.trunk_diameter), 8,
+  add_cylinder(mesh, v.base - 0.05f * up, v.base + f(cordon) * up, f(0.5 * c.trunk_diameter), 8,
                SurfaceClass::trunk);
-  const V3 arm = f(0.5 * c.plant_spacing) * along;
-  const V3 cordon_pt = b + f(cordon) * up;
+  const V3 arm = f(0.5 * c.plant_spacing) * v.along;
+  const V3 cordon_pt = v.base + f(cordon) * up;
   add_cylinder(mesh, cordon_pt - arm, cordon_pt + arm, f(0.3 * c.trunk_diameter), 4,
                SurfaceClass::trunk);
   // Vigour varies from vine to vine: the wall thickness and height are irregular along the row.
   const double vigour = 0.7 + 0.6 * u(rng);
-  const double bottom = cordon + 0.05;
-  const double top = bottom + (c.canopy_top - bottom) * shape.reach * std::min(1.0, 0.75 + 0.25 * vigour);
-  const double half_w = 0.5 * c.canopy_width * shape.size * vigour;
-  const int clumps = draw_count(shape.clumps_per_m * c.plant_spacing, rng);
-  for (int i = 0; i < clumps; ++i) {
-    const double rv = std::min(0.5 * (top - bottom), (0.08 + 0.12 * u(rng)) * shape.size);
-    const double ra = (0.1 + 0.15 * u(rng)) * shape.size;
-    const double rc = half_w * (0.7 + 0.5 * u(rng));
-    const double h = bottom + rv + u(rng) * std::max(0.0, top - bottom - 2.0 * rv);
-    const V3 centre = b + f((u(rng) - 0.5) * c.plant_spacing) * along +
-                      f(0.15 * half_w * n01(rng)) * across + f(h) * up;
-    add_blob(mesh, centre, V3(f(ra), f(rc), f(rv)), 0.3f, rng, SurfaceClass::canopy);
-    // add_blob radii are in world axes; rotate the blob into the row frame by re-placing the
-    // 12 vertices just added about the centre.
-    const std::size_t first = mesh.vertices.size() - 12;
-    for (std::size_t k = first; k < mesh.vertices.size(); ++k) {
-      const V3 d = mesh.vertices[k] - centre;
-      mesh.vertices[k] = centre + d.x() * along + d.y() * across + d.z() * up;
-    }
-  }
-  const int shoots = draw_count(shape.shoots_per_m * c.plant_spacing, rng);
-  for (int i = 0; i < shoots; ++i) {
-    const float side = u(rng) < 0.5 ? -1.0f : 1.0f;
-    const double h = bottom + u(rng) * (top - bottom);
-    const double along_off = (u(rng) - 0.5) * c.plant_spacing;
-    const V3 root = b + f(along_off) * along + f(side * 0.5 * half_w) * across + f(h) * up;
-    const double reach = half_w + u(rng) * c.shoot_protrusion;
-    const V3 tip = b + f(along_off + 0.2 * (u(rng) - 0.5)) * along + f(side * reach) * across +
-                   f(h + 0.25 * u(rng)) * up;
-    add_spike(mesh, root, tip, 0.02f, SurfaceClass::canopy);
-  }
-  return top;
+  v.bottom = cordon + 0.05;
+  v.top = v.bottom + (c.canopy_top - v.bottom) * shape.reach * std::min(1.0, 0.75 + 0.25 * vigour);
+  v.half_width = 0.5 * c.canopy_width * shape.size * vigour;
+  add_clumps(mesh, v, draw_count(shape.clumps_per_m * c.plant_spacing, rng), shape.size,
+             c.plant_spacing, rng);
+  add_shoots(mesh, v, draw_count(shape.shoots_per_m * c.plant_spacing, rng), c, rng);
+  return v.top;
 }
 
 Field generate_vineyard(const VineyardConfig& config, const TerrainConfig& terrain,

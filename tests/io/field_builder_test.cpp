@@ -151,13 +151,19 @@ sim::FieldConfig jojos_block() {
   return c;
 }
 
-// jojos_block's relative path from config/fields/ reaches ROWNAV_SHARED_DATA (= source/../shared/data).
-std::filesystem::path layout_base() { return kConfigDir; }
+// jojos_block's relative path from config/fields/ reaches ROWNAV_SHARED_DATA (=
+// source/../shared/data).
+std::filesystem::path layout_base() {
+  return kConfigDir;
+}
 
 TEST(FieldConfigFiles, YamlKeysAreFieldNamesAndMatchTheCppConfigs) {
   const std::map<std::string, sim::FieldConfig> expected{
-      {"vineyard_narrow_high.yaml", narrow_high()}, {"vineyard_wide_low.yaml", wide_low()},
-      {"orchard.yaml", orchard()}, {"maize.yaml", maize()}, {"jojos_block.yaml", jojos_block()}};
+      {"vineyard_narrow_high.yaml", narrow_high()},
+      {"vineyard_wide_low.yaml", wide_low()},
+      {"orchard.yaml", orchard()},
+      {"maize.yaml", maize()},
+      {"jojos_block.yaml", jojos_block()}};
   for (const auto& [file, cpp] : expected) {
     SCOPED_TRACE(file);
     const sim::FieldConfig y = load(file);
@@ -167,8 +173,8 @@ TEST(FieldConfigFiles, YamlKeysAreFieldNamesAndMatchTheCppConfigs) {
 }
 
 std::size_t count(const sim::Field& f, sim::PlantKind k) {
-  return static_cast<std::size_t>(
-      std::count_if(f.plants.begin(), f.plants.end(), [k](const sim::Plant& p) { return p.kind == k; }));
+  return static_cast<std::size_t>(std::count_if(f.plants.begin(), f.plants.end(),
+                                                [k](const sim::Plant& p) { return p.kind == k; }));
 }
 std::size_t count(const sim::Field& f, sim::SurfaceClass c) {
   return static_cast<std::size_t>(std::count(f.mesh.labels.begin(), f.mesh.labels.end(), c));

@@ -13,8 +13,8 @@
 namespace rownav::io {
 namespace {
 
-const std::filesystem::path kJojos =
-    std::filesystem::path(ROWNAV_SHARED_DATA) / "layouts/agrids_jojos_vineyard/jojos_vineyard.geojson";
+const std::filesystem::path kJojos = std::filesystem::path(ROWNAV_SHARED_DATA) /
+                                     "layouts/agrids_jojos_vineyard/jojos_vineyard.geojson";
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
   const auto p = std::filesystem::path(::testing::TempDir()) / ("rownav_layout_" + name);
@@ -98,17 +98,24 @@ TEST(GeoJsonLayout, PointsNamedAsPlantsJoinTheNearestRow) {
 
 TEST(GeoJsonLayout, MalformedInputNamesThePosition) {
   expect_input_error([] { read_geojson_layout(write_temp("bad.geojson", "{\"type\": ")); }, "byte");
-  expect_input_error([] { read_geojson_layout(write_temp("notfc.geojson", "{\"type\":\"Feature\"}")); },
-                     "FeatureCollection");
+  expect_input_error(
+      [] { read_geojson_layout(write_temp("notfc.geojson", "{\"type\":\"Feature\"}")); },
+      "FeatureCollection");
   const std::string one_point = R"({"type":"FeatureCollection","features":[
     {"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":[[0,51],[0.001,51]]}},
     {"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":[[0,51]]}}]})";
-  expect_input_error([&] { read_geojson_layout(write_temp("short.geojson", one_point)); }, ":feature 1:");
+  expect_input_error([&] { read_geojson_layout(write_temp("short.geojson", one_point)); },
+                     ":feature 1:");
   const std::string bad_coord = R"({"type":"FeatureCollection","features":[
     {"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":[[0,"x"],[0.001,51]]}}]})";
-  expect_input_error([&] { read_geojson_layout(write_temp("coord.geojson", bad_coord)); }, ":feature 0:");
-  expect_input_error([] { read_geojson_layout(write_temp("empty.geojson", R"({"type":"FeatureCollection","features":[]})")); },
-                     "no rows");
+  expect_input_error([&] { read_geojson_layout(write_temp("coord.geojson", bad_coord)); },
+                     ":feature 0:");
+  expect_input_error(
+      [] {
+        read_geojson_layout(
+            write_temp("empty.geojson", R"({"type":"FeatureCollection","features":[]})"));
+      },
+      "no rows");
   expect_input_error([] { read_geojson_layout("/nonexistent/layout.geojson"); }, "cannot open");
   expect_input_error([] { read_layout(write_temp("x.kml", "")); }, "unknown layout format");
 }
@@ -149,12 +156,19 @@ TEST(CsvLayout, MalformedInputNamesTheLine) {
   expect_input_error([] { read_csv_layout(write_temp("c2.csv", "row,x,y\n1,0,0\n1,abc,0\n")); },
                      ":line 3: x: 'abc' is not a number");
   expect_input_error([] { read_csv_layout(write_temp("c3.csv", "row,x\n")); }, ":line 1: header");
-  expect_input_error([] { read_csv_layout(write_temp("c4.csv", "kind,row,x,y\nrow,1,0,0\nrow,1,1,0\nbush,1,0,0\n")); },
-                     ":line 4: kind: unknown 'bush'");
-  expect_input_error([] { read_csv_layout(write_temp("c5.csv", "row,x,y\n1,0,0\n2,0,1\n2,1,1\n")); },
-                     ":line 2: row '1' has fewer than 2 points");
-  expect_input_error([] { read_csv_layout(write_temp("c6.csv", "kind,row,x,y\nrow,1,0,0\nrow,1,1,0\npost,9,0,0\n")); },
-                     ":line 4: row '9' has no row points");
+  expect_input_error(
+      [] {
+        read_csv_layout(write_temp("c4.csv", "kind,row,x,y\nrow,1,0,0\nrow,1,1,0\nbush,1,0,0\n"));
+      },
+      ":line 4: kind: unknown 'bush'");
+  expect_input_error(
+      [] { read_csv_layout(write_temp("c5.csv", "row,x,y\n1,0,0\n2,0,1\n2,1,1\n")); },
+      ":line 2: row '1' has fewer than 2 points");
+  expect_input_error(
+      [] {
+        read_csv_layout(write_temp("c6.csv", "kind,row,x,y\nrow,1,0,0\nrow,1,1,0\npost,9,0,0\n"));
+      },
+      ":line 4: row '9' has no row points");
   expect_input_error([] { read_csv_layout(write_temp("c7.csv", "# nothing\n")); }, "no header");
   expect_input_error([] { read_csv_layout(write_temp("c8.csv", "row,x,y\n")); }, "no rows");
 }

@@ -51,7 +51,8 @@ TEST_P(RowCropPerCrop, SpacingHeightAndLabels) {
   std::sort(xs.begin(), xs.end());
   const double mean_gap = (xs.back() - xs.front()) / static_cast<double>(xs.size() - 1);
   EXPECT_NEAR(mean_gap, p.plant_spacing, 0.1 * p.plant_spacing);
-  EXPECT_NEAR(height / (6.0 * static_cast<double>(xs.size())), p.plant_height, 0.1 * p.plant_height);
+  EXPECT_NEAR(height / (6.0 * static_cast<double>(xs.size())), p.plant_height,
+              0.1 * p.plant_height);
   const auto crop_tris = std::count(f.mesh.labels.begin(), f.mesh.labels.end(), SurfaceClass::crop);
   EXPECT_GT(crop_tris, static_cast<long>(6 * xs.size() * 8));
   // The crop stays low: no crop vertex above 1.6 x the nominal height.

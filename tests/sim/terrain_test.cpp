@@ -77,8 +77,8 @@ TEST(Terrain, MeshCoversTheAreaAtCellSize) {
   for (const auto& v : m.vertices) ASSERT_NEAR(v.z(), t.height(v.x(), v.y()), 1e-5);
   // Triangles face up.
   const auto& tri = m.triangles.front();
-  const Eigen::Vector3f nrm = (m.vertices[tri[1]] - m.vertices[tri[0]])
-                                  .cross(m.vertices[tri[2]] - m.vertices[tri[0]]);
+  const Eigen::Vector3f nrm =
+      (m.vertices[tri[1]] - m.vertices[tri[0]]).cross(m.vertices[tri[2]] - m.vertices[tri[0]]);
   EXPECT_GT(nrm.z(), 0.0f);
 }
 

@@ -19,14 +19,16 @@ namespace rownav::sim {
 /// FieldConfig::vineyard (its rows, row_length, row_spacing and curvature fields are unused;
 /// the row spacing is estimated from the layout).
 struct LayoutConfig {
-  std::string file;              ///< CSV or GeoJSON layout, relative to the config file
-  std::string instance_mesh;     ///< optional vine-row mesh instanced along rows (replaces vines)
-  double instance_spacing = 5.1; ///< [m] distance between instances along a row
-  std::string terrain_mesh;      ///< optional whole terrain / field mesh (world frame, labelled
-                                 ///< ground), replaces the procedural ground
+  std::string file;               ///< CSV or GeoJSON layout, relative to the config file
+  std::string instance_mesh;      ///< optional vine-row mesh instanced along rows (replaces vines)
+  double instance_spacing = 5.1;  ///< [m] distance between instances along a row
+  std::string terrain_mesh;       ///< optional whole terrain / field mesh (world frame, labelled
+                                  ///< ground), replaces the procedural ground
   std::vector<std::string> blocks;  ///< block names to keep (empty = all)
-  double origin_lat_deg = std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
-  double origin_lon_deg = std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
+  double origin_lat_deg =
+      std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
+  double origin_lon_deg =
+      std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
 
   template <class S, class V>
   static void fields(S& s, V& v) {

@@ -31,20 +31,20 @@ CropPreset crop_preset(CropType crop);
 /// Row-crop geometry. Rows run along +x from x = 0, row k at y = k * row_spacing.
 /// Dimension fields left at 0 take the crop's preset.
 struct RowCropConfig {
-  CropType crop = CropType::maize;     ///< species (plant model and presets)
-  int rows = 12;                       ///< [-] number of rows
-  double row_length = 40.0;            ///< [m] first to last plant
-  double row_spacing = 0.0;            ///< [m] between rows (0 = preset; 0.5-0.9 typical)
-  double plant_spacing = 0.0;          ///< [m] along the row (0 = preset; 0.13-0.5 typical)
-  double plant_height = 0.0;           ///< [m] mean height (0 = preset; 0.2-0.6 typical)
-  double plant_width = 0.0;            ///< [m] mean plant diameter (0 = preset)
-  double size_variation = 0.15;        ///< [-] relative std-dev of plant size
-  double missing_plants_percent = 5.0; ///< [%] plants missing at random
-  double position_noise = 0.02;        ///< [m] std-dev of the plant position around its slot
-  double curvature_amplitude = 0.0;    ///< [m] lateral sine bend of the rows
-  double curvature_wavelength = 60.0;  ///< [m] wavelength of the bend
-  double headland_width = 4.0;         ///< [m] free ground beyond the row ends
-  WeedLevel weeds = WeedLevel::none;   ///< inter-row weeds
+  CropType crop = CropType::maize;      ///< species (plant model and presets)
+  int rows = 12;                        ///< [-] number of rows
+  double row_length = 40.0;             ///< [m] first to last plant
+  double row_spacing = 0.0;             ///< [m] between rows (0 = preset; 0.5-0.9 typical)
+  double plant_spacing = 0.0;           ///< [m] along the row (0 = preset; 0.13-0.5 typical)
+  double plant_height = 0.0;            ///< [m] mean height (0 = preset; 0.2-0.6 typical)
+  double plant_width = 0.0;             ///< [m] mean plant diameter (0 = preset)
+  double size_variation = 0.15;         ///< [-] relative std-dev of plant size
+  double missing_plants_percent = 5.0;  ///< [%] plants missing at random
+  double position_noise = 0.02;         ///< [m] std-dev of the plant position around its slot
+  double curvature_amplitude = 0.0;     ///< [m] lateral sine bend of the rows
+  double curvature_wavelength = 60.0;   ///< [m] wavelength of the bend
+  double headland_width = 4.0;          ///< [m] free ground beyond the row ends
+  WeedLevel weeds = WeedLevel::none;    ///< inter-row weeds
 
   template <class S, class V>
   static void fields(S& s, V& v) {

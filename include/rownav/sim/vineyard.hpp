@@ -22,30 +22,30 @@ enum class WeedLevel : std::uint8_t { none, some, many };
 
 /// Vineyard geometry. Rows run along +x from x = 0, row k at y = k * row_spacing.
 struct VineyardConfig {
-  int rows = 10;                        ///< [-] number of rows
-  double row_length = 50.0;             ///< [m] from end post to end post
-  double row_spacing = 2.0;             ///< [m] between row centre lines (narrow 1.5-1.9, wide 2.5-3)
-  double plant_spacing = 1.0;           ///< [m] between vines along the row
-  double trunk_diameter = 0.06;         ///< [m]
-  double cordon_height_min = 0.3;       ///< [m] lowest cordon (top of trunk) above the ground
-  double cordon_height_max = 0.6;       ///< [m] highest cordon
-  double canopy_top = 1.8;              ///< [m] top of the full-grown canopy above the ground
-  double canopy_width = 0.5;            ///< [m] mean canopy wall thickness across the row
+  int rows = 10;                   ///< [-] number of rows
+  double row_length = 50.0;        ///< [m] from end post to end post
+  double row_spacing = 2.0;        ///< [m] between row centre lines (narrow 1.5-1.9, wide 2.5-3)
+  double plant_spacing = 1.0;      ///< [m] between vines along the row
+  double trunk_diameter = 0.06;    ///< [m]
+  double cordon_height_min = 0.3;  ///< [m] lowest cordon (top of trunk) above the ground
+  double cordon_height_max = 0.6;  ///< [m] highest cordon
+  double canopy_top = 1.8;         ///< [m] top of the full-grown canopy above the ground
+  double canopy_width = 0.5;       ///< [m] mean canopy wall thickness across the row
   GrowthStage stage = GrowthStage::medium;  ///< canopy density
-  double shoot_protrusion = 0.3;        ///< [m] max reach of shoots beyond the canopy wall
-  double post_spacing = 5.5;            ///< [m] between intermediate trellis posts
-  double post_diameter = 0.08;          ///< [m] intermediate post
-  double end_post_diameter = 0.14;      ///< [m] stronger post at each row end
-  bool wires = true;                    ///< model the trellis wires
-  int wire_count = 3;                   ///< [-] wires from the cordon up to the canopy top
-  double wire_diameter = 0.004;         ///< [m]
-  double missing_plants_percent = 3.0;  ///< [%] vines missing at random (besides the gaps)
-  int gap_count = 1;                    ///< [-] longer gaps in the whole field (random rows)
-  int gap_length_plants = 3;            ///< [-] consecutive vines missing in each gap
-  double curvature_amplitude = 0.0;     ///< [m] lateral sine bend of the rows (same for all rows)
-  double curvature_wavelength = 80.0;   ///< [m] wavelength of the bend
-  double headland_width = 6.0;          ///< [m] free ground beyond the row ends
-  WeedLevel weeds = WeedLevel::none;    ///< inter-row grass and weeds
+  double shoot_protrusion = 0.3;            ///< [m] max reach of shoots beyond the canopy wall
+  double post_spacing = 5.5;                ///< [m] between intermediate trellis posts
+  double post_diameter = 0.08;              ///< [m] intermediate post
+  double end_post_diameter = 0.14;          ///< [m] stronger post at each row end
+  bool wires = true;                        ///< model the trellis wires
+  int wire_count = 3;                       ///< [-] wires from the cordon up to the canopy top
+  double wire_diameter = 0.004;             ///< [m]
+  double missing_plants_percent = 3.0;      ///< [%] vines missing at random (besides the gaps)
+  int gap_count = 1;                        ///< [-] longer gaps in the whole field (random rows)
+  int gap_length_plants = 3;                ///< [-] consecutive vines missing in each gap
+  double curvature_amplitude = 0.0;    ///< [m] lateral sine bend of the rows (same for all rows)
+  double curvature_wavelength = 80.0;  ///< [m] wavelength of the bend
+  double headland_width = 6.0;         ///< [m] free ground beyond the row ends
+  WeedLevel weeds = WeedLevel::none;   ///< inter-row grass and weeds
 
   template <class S, class V>
   static void fields(S& s, V& v) {
