@@ -162,7 +162,12 @@ void add_ground(Field& field, std::size_t max_triangles) {
   const Eigen::Vector2d lo = box.min() - margin, hi = box.max() + margin;
   TerrainConfig tc = field.terrain.config();
   const double area = (hi - lo).prod();
-  tc.cell_size = std::max(tc.cell_size, std::sqrt(2.0 * area / static_cast<double>(max_triangles)));
+  const double cell = std::sqrt(2.0 * area / static_cast<double>(max_triangles));
+  if (cell <= tc.cell_size) {
+    field.mesh.append(field.terrain.mesh(lo, hi));
+    return;
+  }
+  tc.cell_size = cell;  // same seed and shape, coarser cells
   field.mesh.append(Terrain(tc).mesh(lo, hi));
 }
 

@@ -255,6 +255,25 @@ TEST(Vineyard, TriangleBudgetOfALargeHighCanopyVineyard) {
   EXPECT_EQ(f.mesh.labels.size(), f.mesh.triangle_count());
 }
 
+TEST(RowDressing, GroundCoversHeadlandsAndIsCoarsenedOverBudget) {
+  Field f;
+  TerrainConfig t;
+  t.cell_size = 0.5;
+  f.terrain = Terrain(t);
+  f.headland_width = 5.0;
+  f.rows.push_back({0, 0, {{0.0, 0.0}, {100.0, 0.0}}, 0.3, 1.8});
+  f.rows.push_back({1, 0, {{0.0, 20.0}, {100.0, 20.0}}, 0.3, 1.8});
+  add_ground(f);
+  EXPECT_EQ(f.mesh.triangle_count(), 2u * 220u * 60u);  // 110 x 30 m at 0.5 m
+  EXPECT_NEAR(f.mesh.bounds().min().x(), -5.0f, 1e-4f);
+  EXPECT_NEAR(f.mesh.bounds().max().y(), 25.0f, 1e-4f);
+  Field g = f;
+  g.mesh = TriangleMesh{};
+  add_ground(g, 1000);
+  EXPECT_LE(g.mesh.triangle_count(), 1100u);
+  EXPECT_GT(g.mesh.triangle_count(), 500u);
+}
+
 TEST(Vineyard, ValidateNamesTheField) {
   VineyardConfig c;
   c.rows = 0;
