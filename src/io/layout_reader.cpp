@@ -59,10 +59,8 @@ int nearest_row(const sim::RowLayout& layout, const Eigen::Vector2d& p) {
   return best;
 }
 
-/// Filters by block, converts to the local frame, numbers blocks and attaches plants to rows.
-sim::RowLayout finish(RawLayout raw, const std::filesystem::path& file,
-                      const LayoutReadOptions& opt) {
-  const std::string name = file.string();
+/// Keeps the rows of the requested blocks; every requested block must have rows.
+void keep_blocks(RawLayout& raw, const LayoutReadOptions& opt, const std::string& name) {
   for (const auto& b : opt.blocks)
     if (std::none_of(raw.rows.begin(), raw.rows.end(), [&](auto& r) { return r.block == b; }))
       throw InputError(name, "", "block '" + b + "' has no rows");
@@ -70,6 +68,13 @@ sim::RowLayout finish(RawLayout raw, const std::filesystem::path& file,
     return !opt.blocks.empty() &&
            std::find(opt.blocks.begin(), opt.blocks.end(), r.block) == opt.blocks.end();
   });
+}
+
+/// Filters by block, converts to the local frame, numbers blocks and attaches plants to rows.
+sim::RowLayout finish(RawLayout raw, const std::filesystem::path& file,
+                      const LayoutReadOptions& opt) {
+  const std::string name = file.string();
+  keep_blocks(raw, opt, name);
   if (raw.rows.empty()) throw InputError(name, "", "no rows");
   std::optional<GeographicLib::LocalCartesian> enu;
   if (raw.geographic) {
