@@ -1,0 +1,79 @@
+#include "rownav/sim/lidar_presets.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace rownav::sim {
+
+namespace {
+
+/// Ouster OS1 rev. 6 datasheet: 1024 x 10 Hz, 0.3 m minimum range, ~1.5 cm range precision.
+LidarConfig os1(int rings, double half_vfov_deg) {
+  LidarConfig c;
+  c.kind = LidarKind::spinning;
+  c.columns = 1024;
+  c.rings = rings;
+  c.vertical_fov_min_deg = -half_vfov_deg;
+  c.vertical_fov_max_deg = half_vfov_deg;
+  c.rate_hz = 10.0;
+  c.range_min = 0.3;
+  c.range_max = 120.0;
+  c.range_noise_std = 0.015;
+  return c;
+}
+
+/// Velodyne VLP-16 datasheet: 16 lasers -15..+15 deg every 2 deg, 0.2 deg azimuth at 10 Hz,
+/// 100 m, +-3 cm accuracy.
+LidarConfig vlp16() {
+  LidarConfig c;
+  c.kind = LidarKind::spinning;
+  c.columns = 1800;
+  c.rings = 16;
+  for (int r = 0; r < 16; ++r) c.vertical_angles_deg.push_back(-15.0 + 2.0 * r);
+  c.vertical_fov_min_deg = -15.0;
+  c.vertical_fov_max_deg = 15.0;
+  c.rate_hz = 10.0;
+  c.range_min = 0.4;
+  c.range_max = 100.0;
+  c.range_noise_std = 0.03;
+  return c;
+}
+
+/// SICK 2D scanners: 270 deg fan, `beams` over it inclusive of both ends.
+LidarConfig sick(int beams, double range_min, double range_max, double rate_hz, double noise) {
+  LidarConfig c;
+  c.kind = LidarKind::planar;
+  c.columns = beams;
+  c.rings = 1;
+  c.vertical_fov_min_deg = 0.0;
+  c.vertical_fov_max_deg = 0.0;
+  c.horizontal_fov_deg = 270.0;
+  c.rate_hz = rate_hz;
+  c.range_min = range_min;
+  c.range_max = range_max;
+  c.range_noise_std = noise;
+  return c;
+}
+
+}  // namespace
+
+std::vector<std::string> lidar_preset_names() {
+  return {"os1_16", "os1_64", "vlp16", "sick_tim571", "sick_lms111", "lms_1081"};
+}
+
+LidarConfig lidar_preset(std::string_view name) {
+  if (name == "os1_16") return os1(16, 16.6);
+  if (name == "os1_64") return os1(64, 22.5);
+  if (name == "vlp16") return vlp16();
+  // TiM571: 0.33 deg, 15 Hz, 0.05-25 m, statistical error 20 mm.
+  if (name == "sick_tim571") return sick(811, 0.05, 25.0, 15.0, 0.02);
+  // LMS111: 0.5 deg, 25 Hz, 0.5-20 m, statistical error 12 mm.
+  if (name == "sick_lms111") return sick(541, 0.5, 20.0, 25.0, 0.012);
+  // LMS1xx at 0.25 deg / 25 Hz as on the Oz robot (real corn data set), 10 m useful range.
+  if (name == "lms_1081") return sick(1081, 0.05, 10.0, 25.0, 0.012);
+  std::string valid;
+  for (const auto& n : lidar_preset_names()) valid += (valid.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("lidar preset '" + std::string(name) + "' unknown; valid: " + valid);
+}
+
+}  // namespace rownav::sim
