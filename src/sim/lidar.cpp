@@ -15,6 +15,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kMaxFoliagePasses = 8;
 constexpr float kPassEpsilon = 0.02f;  // [m] a passed ray continues this far past the leaf
 constexpr int kKnotStride = 16;        // columns between exact PoseAt evaluations
+constexpr std::size_t kPacketColumns = 16;  // columns of one ring in a 16-ray packet
 constexpr float kIntensityFalloff = 30.0f;  // [m] range at which intensity halves
 
 bool is_foliage(SurfaceClass c) {
@@ -157,13 +158,23 @@ void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp
   origins_.resize(n);
   dirs_.resize(n);
   hits_.resize(n);
-  const std::size_t R = std::size_t(config_.rings);
-  for (std::size_t c = 0; c < std::size_t(cols); ++c) {
-    const Eigen::Matrix3f rot = column_pose_[c].linear();
-    const Eigen::Vector3f o = column_pose_[c].translation();
-    for (std::size_t k = 0; k < nsel; ++k) {
-      origins_[c * nsel + k] = o;
-      dirs_[c * nsel + k] = rot * local_dirs_[c * R + std::size_t(rings[k])];
+  order_.resize(n);
+  // Packet order: within each block of kPacketColumns columns, ring by ring, so that a packet of
+  // 16 rays is one ring over adjacent columns (a few degrees wide) rather than one column's fan
+  // of rings (tens of degrees): Embree's packet traversal then visits far fewer nodes.
+  const std::size_t R = std::size_t(config_.rings), C = std::size_t(cols);
+  for (std::size_t b0 = 0; b0 < C; b0 += kPacketColumns) {
+    const std::size_t w = std::min(kPacketColumns, C - b0);
+    for (std::size_t j = 0; j < w; ++j) {
+      const std::size_t c = b0 + j;
+      const Eigen::Matrix3f rot = column_pose_[c].linear();
+      const Eigen::Vector3f o = column_pose_[c].translation();
+      for (std::size_t k = 0; k < nsel; ++k) {
+        const std::size_t i = b0 * nsel + k * w + j;
+        order_[c * nsel + k] = static_cast<std::uint32_t>(i);
+        origins_[i] = o;
+        dirs_[i] = rot * local_dirs_[c * R + std::size_t(rings[k])];
+      }
     }
   }
   const auto t_max = static_cast<float>(config_.range_max);
@@ -222,9 +233,10 @@ core::PointCloud Lidar::sweep(const RayCaster& world, const PoseAt& T_world_base
   const std::size_t R = std::size_t(config_.rings);
   cloud.points.reserve(hits_.size());
   if (labels) labels->reserve(hits_.size());
-  for (std::size_t i = 0; i < hits_.size(); ++i) {
+  for (std::size_t i = 0; i < hits_.size(); ++i) {  // column-major output order
     float intensity = 0.0f;
-    const float r = measure(i, intensity);
+    const std::size_t j = order_[i];
+    const float r = measure(j, intensity);
     if (!std::isfinite(r)) continue;
     const Eigen::Vector3f p = local_dirs_[i] * r;
     core::PointXYZIRT& q = cloud.points.emplace_back();
@@ -235,7 +247,7 @@ core::PointCloud Lidar::sweep(const RayCaster& world, const PoseAt& T_world_base
     q.ring = static_cast<std::uint16_t>(i % R);
     q.column = static_cast<std::uint16_t>(i / R);
     q.time = static_cast<float>(static_cast<double>(i / R) * column_dt_);
-    if (labels) labels->push_back(hits_[i].label);
+    if (labels) labels->push_back(hits_[j].label);
   }
   return cloud;
 }
@@ -254,8 +266,8 @@ core::Scan2D Lidar::scan(const RayCaster& world, const PoseAt& T_world_base_at, 
   s.intensities.resize(hits_.size());
   if (labels) labels->assign(hits_.size(), SurfaceClass::other);
   for (std::size_t i = 0; i < hits_.size(); ++i) {
-    s.ranges[i] = measure(i, s.intensities[i]);
-    if (labels && std::isfinite(s.ranges[i])) (*labels)[i] = hits_[i].label;
+    s.ranges[i] = measure(order_[i], s.intensities[i]);
+    if (labels && std::isfinite(s.ranges[i])) (*labels)[i] = hits_[order_[i]].label;
   }
   return s;
 }

@@ -131,6 +131,7 @@ class Lidar {
   std::vector<float> sub_tmin_;
   std::vector<RayHit> hits_, sub_hits_;
   std::vector<std::size_t> pass_idx_;
+  std::vector<std::uint32_t> order_;  // column-major ray (c * rings + k) -> position in the cast
   std::vector<Eigen::Isometry3f> column_pose_;  // T_world_lidar of each column
   std::normal_distribution<float> normal_;
   std::uniform_real_distribution<float> uniform_;
