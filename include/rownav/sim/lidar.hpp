@@ -118,11 +118,17 @@ class Lidar {
   /// Applies min range, dropout and noise to hits_[i]: measured range [m], +inf without a
   /// return (miss, dropout, beyond range_max), NaN when the surface is closer than range_min.
   float measure(std::size_t i, float& intensity);
+  /// Uniform in [0, 1) from 24 bits of rng_.
+  float uniform01() { return static_cast<float>(rng_() >> 40) * 0x1p-24f; }
+  /// Standard normal by Box-Muller, two values per draw of rng_ (half the cost of
+  /// std::normal_distribution's one draw per uniform; the sensor model draws one or two a ray).
+  float gaussian();
 
   LidarConfig config_;
   std::mt19937_64 rng_;
   Eigen::Isometry3d T_base_lidar_;
   double column_dt_ = 0.0;                  // [s] between columns
+  std::size_t packet_columns_ = 16;         // columns in one 16-ray packet (see cast_all)
   std::vector<Eigen::Vector3f> local_dirs_;  // column-major: [c * rings + r], LiDAR frame
   std::vector<int> all_rings_;               // 0..rings-1
   std::vector<int> planar_ring_;             // the ring scan() uses
@@ -133,8 +139,8 @@ class Lidar {
   std::vector<std::size_t> pass_idx_;
   std::vector<std::uint32_t> order_;  // column-major ray (c * rings + k) -> position in the cast
   std::vector<Eigen::Isometry3f> column_pose_;  // T_world_lidar of each column
-  std::normal_distribution<float> normal_;
-  std::uniform_real_distribution<float> uniform_;
+  float spare_gaussian_ = 0.0f;  // second Box-Muller value, used by the next gaussian()
+  bool has_spare_ = false;
 };
 
 }  // namespace rownav::sim
