@@ -52,68 +52,6 @@ Eigen::Isometry3f interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3
 
 }  // namespace
 
-void LidarConfig::validate() const {
-  using core::check;
-  core::check_range(columns, 1, 65535, "columns");
-  core::check_range(rings, 1, 65535, "rings");
-  check(kind != LidarKind::planar || rings == 1, "rings", "must be 1 for a planar LiDAR");
-  check(vertical_angles_deg.empty() || vertical_angles_deg.size() == std::size_t(rings),
-        "vertical_angles_deg", "must be empty or hold one elevation per ring");
-  for (std::size_t i = 0; i < vertical_angles_deg.size(); ++i) {
-    core::check_range(vertical_angles_deg[i], -90.0, 90.0, "vertical_angles_deg");
-    check(i == 0 || vertical_angles_deg[i] > vertical_angles_deg[i - 1], "vertical_angles_deg",
-          "must be strictly ascending");
-  }
-  core::check_range(vertical_fov_min_deg, -90.0, 90.0, "vertical_fov_min_deg");
-  core::check_range(vertical_fov_max_deg, -90.0, 90.0, "vertical_fov_max_deg");
-  check(vertical_fov_max_deg > vertical_fov_min_deg || rings == 1 ||
-            !vertical_angles_deg.empty(),
-        "vertical_fov_max_deg", "must be > vertical_fov_min_deg");
-  check(horizontal_fov_deg > 0.0 && horizontal_fov_deg <= 360.0, "horizontal_fov_deg",
-        "must be in (0, 360]");
-  core::check_positive(rate_hz, "rate_hz");
-  core::check_non_negative(range_min, "range_min");
-  check(range_max > range_min && std::isfinite(range_max), "range_max",
-        "must be finite and > range_min");
-  core::check_non_negative(range_noise_std, "range_noise_std");
-  core::check_range(dropout_probability, 0.0, 1.0, "dropout_probability");
-  core::check_range(foliage_pass_probability, 0.0, 1.0, "foliage_pass_probability");
-  core::check_non_negative(intensity_noise_std, "intensity_noise_std");
-  check(mount_xyz.allFinite(), "mount_xyz", "must be finite");
-  check(mount_rpy_deg.allFinite(), "mount_rpy_deg", "must be finite");
-}
-
-Eigen::Isometry3d LidarConfig::T_base_lidar() const {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(core::deg2rad(mount_rpy_deg.z()), Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(core::deg2rad(mount_rpy_deg.y()), Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(core::deg2rad(mount_rpy_deg.x()), Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  T.translation() = mount_xyz;
-  return T;
-}
-
-std::vector<double> LidarConfig::ring_elevations() const {
-  std::vector<double> out(static_cast<std::size_t>(std::max(rings, 0)));
-  for (std::size_t r = 0; r < out.size(); ++r) {
-    if (!vertical_angles_deg.empty()) {
-      out[r] = core::deg2rad(vertical_angles_deg[r]);
-    } else if (rings == 1) {
-      out[r] = core::deg2rad(0.5 * (vertical_fov_min_deg + vertical_fov_max_deg));
-    } else {
-      const double f = static_cast<double>(r) / (rings - 1);
-      out[r] = core::deg2rad(vertical_fov_min_deg + f * (vertical_fov_max_deg - vertical_fov_min_deg));
-    }
-  }
-  return out;
-}
-
-double LidarConfig::azimuth_increment() const {
-  const double fov = core::deg2rad(horizontal_fov_deg);
-  if (horizontal_fov_deg >= 360.0 - 1e-9) return fov / columns;
-  return columns > 1 ? fov / (columns - 1) : 0.0;
-}
-
 Lidar::Lidar(const LidarConfig& config, std::uint64_t seed)
     : config_(config), rng_(seed), T_base_lidar_(config.T_base_lidar()) {
   config_.validate();
@@ -143,10 +81,8 @@ Lidar::Lidar(const LidarConfig& config, std::uint64_t seed)
   while (packet_columns_ < kPacket && double(packet_columns_) * 1.5 < ideal) packet_columns_ *= 2;
 }
 
-void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp,
-                     const std::vector<int>& rings) {
+void Lidar::update_column_poses(const PoseAt& pose_at, double stamp) {
   const int cols = config_.columns;
-  const std::size_t nsel = rings.size(), n = std::size_t(cols) * nsel;
   // T_world_lidar per column: exact at every kKnotStride-th column, interpolated in between.
   column_pose_.resize(std::size_t(cols));
   const bool moving = config_.motion_during_sweep;
@@ -159,6 +95,12 @@ void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp
       column_pose_[std::size_t(c)] =
           moving && c1 > c0 ? interpolate(k0, k1, double(c - c0) / (c1 - c0)) : k0.cast<float>();
   }
+}
+
+void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp,
+                     const std::vector<int>& rings) {
+  update_column_poses(pose_at, stamp);
+  const std::size_t nsel = rings.size(), C = std::size_t(config_.columns), n = C * nsel;
   origins_.resize(n);
   dirs_.resize(n);
   hits_.resize(n);
@@ -167,7 +109,7 @@ void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp
   // a compact pc x (16 / pc) patch of adjacent columns and rings (a few degrees wide) rather
   // than one column's fan of rings (tens of degrees): Embree's packet traversal then visits far
   // fewer BVH nodes (OS1-16 sweep 5.1 -> 2.6 ms in bench/lidar_bench.cpp).
-  const std::size_t R = std::size_t(config_.rings), C = std::size_t(cols);
+  const std::size_t R = std::size_t(config_.rings);
   const std::size_t pc = nsel == 1 ? kPacket : packet_columns_;
   for (std::size_t b0 = 0; b0 < C; b0 += pc) {
     const std::size_t w = std::min(pc, C - b0);
@@ -185,7 +127,12 @@ void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp
   }
   const auto t_max = static_cast<float>(config_.range_max);
   world.cast_batch(origins_.data(), dirs_.data(), n, 0.0f, t_max, hits_.data());
-  if (config_.foliage_pass_probability <= 0.0) return;
+  if (config_.foliage_pass_probability > 0.0) pass_foliage(world);
+}
+
+void Lidar::pass_foliage(const RayCaster& world) {
+  const std::size_t n = hits_.size();
+  const auto t_max = static_cast<float>(config_.range_max);
   const auto p = static_cast<float>(config_.foliage_pass_probability);
   pass_idx_.resize(n);
   for (std::size_t i = 0; i < n; ++i) pass_idx_[i] = i;

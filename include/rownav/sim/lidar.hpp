@@ -115,6 +115,10 @@ class Lidar {
   /// Casts every (column, ring in `rings`) ray into hits_ (foliage passes included).
   void cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp,
                 const std::vector<int>& rings);
+  /// T_world_lidar of every column into column_pose_ (PoseAt at knots, interpolated between).
+  void update_column_poses(const PoseAt& pose_at, double stamp);
+  /// Re-casts rays that pass through foliage (leaf gaps), in rounds, from just past the leaf.
+  void pass_foliage(const RayCaster& world);
   /// Applies min range, dropout and noise to hits_[i]: measured range [m], +inf without a
   /// return (miss, dropout, beyond range_max), NaN when the surface is closer than range_min.
   float measure(std::size_t i, float& intensity);
