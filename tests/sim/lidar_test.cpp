@@ -291,5 +291,57 @@ TEST(Lidar, MinimumRangeBlocksAndReportsNaN) {
   EXPECT_TRUE(std::isinf(s.ranges[0]));    // -135 deg: nothing behind
 }
 
+TEST(Lidar, PitchedBaseScanHitsGroundAtAnalyticRange) {
+  const RayCaster world(plane(0.0f, 100.0f, SurfaceClass::ground));
+  LidarConfig c = lidar_preset("lms_1081");
+  c.range_noise_std = 0.0;
+  c.range_max = 30.0;
+  c.mount_xyz = {0.0, 0.0, 0.0};
+  Lidar lidar(c, 4);
+  const double h = 0.5, pitch = core::deg2rad(10.0);  // nose down (REP 103)
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(3.0, -2.0, h);
+  T.linear() = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  std::vector<SurfaceClass> labels;
+  const core::Scan2D s = lidar.scan(world, still(T), 0.0, &labels);
+  int checked = 0;
+  for (std::size_t i = 0; i < s.ranges.size(); ++i) {
+    const double down = std::sin(pitch) * std::cos(s.angle(i));  // -z of the beam direction
+    const double expect = down > 0.0 ? h / down : 1e9;
+    if (std::abs(expect - 30.0) < 0.5) continue;  // at range_max: either way
+    if (expect > 30.0) {
+      EXPECT_TRUE(std::isinf(s.ranges[i])) << i;  // looks up or beyond range_max: no return
+      continue;
+    }
+    EXPECT_NEAR(s.ranges[i], expect, 1e-4 * expect) << i;
+    EXPECT_EQ(labels[i], SurfaceClass::ground);
+    ++checked;
+  }
+  EXPECT_GT(checked, 500);
+}
+
+TEST(Lidar, IntensityDependsOnClassRangeAndIncidence) {
+  TriangleMesh m;
+  const auto a = m.add_vertex({3, -10, -1}), b = m.add_vertex({3, 0, -1});
+  const auto c = m.add_vertex({3, 0, 4}), d = m.add_vertex({3, -10, 4});
+  const auto e = m.add_vertex({3, 10, -1}), f = m.add_vertex({3, 10, 4});
+  m.add_triangle(a, b, c, SurfaceClass::wire);  // right half (y < 0)
+  m.add_triangle(a, c, d, SurfaceClass::wire);
+  m.add_triangle(b, e, f, SurfaceClass::ground);  // left half (y > 0)
+  m.add_triangle(b, f, c, SurfaceClass::ground);
+  const RayCaster world(m);
+  LidarConfig cfg = lidar_preset("lms_1081");
+  cfg.range_noise_std = 0.0;
+  cfg.intensity_noise_std = 0.0;
+  cfg.mount_xyz = {0.0, 0.0, 1.0};
+  Lidar lidar(cfg, 8);
+  const core::Scan2D s = lidar.scan(world, still(), 0.0);
+  const std::size_t ahead = 540, step = 80;  // 20 deg either side
+  EXPECT_GT(s.intensities[ahead - step], s.intensities[ahead + step]);  // wire beats ground
+  EXPECT_NEAR(s.intensities[ahead - step] / s.intensities[ahead + step], 0.8 / 0.25, 1e-3);
+  EXPECT_GT(s.intensities[ahead + step], s.intensities[ahead + 2 * step]);  // farther, oblique
+  EXPECT_GT(s.intensities[ahead + 2 * step], 0.0f);
+}
+
 }  // namespace
 }  // namespace rownav::sim
