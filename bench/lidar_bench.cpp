@@ -24,9 +24,11 @@ constexpr float kRowLength = 100.0f, kRowSpacing = 2.5f;
 TriangleMesh icosahedron() {
   TriangleMesh m;
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  // clang-format off
   const std::array<Eigen::Vector3f, 12> v{{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
                                            {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
                                            {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}}};
+  // clang-format on
   for (const auto& p : v) m.add_vertex(p.normalized());
   const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                         {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -135,13 +137,22 @@ void sweep(benchmark::State& state, const char* preset, double foliage_pass) {
   const auto rays = double(lidar.config().columns) * lidar.config().rings;
   state.counters["triangles"] = double(w.triangle_count());
   state.counters["points"] = double(points);
-  state.counters["rays/s"] = benchmark::Counter(rays, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(rays, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void BM_Os1_64Sweep(benchmark::State& s) { sweep(s, "os1_64", 0.0); }
-void BM_Os1_64SweepFoliagePass(benchmark::State& s) { sweep(s, "os1_64", 0.3); }
-void BM_Os1_16Sweep(benchmark::State& s) { sweep(s, "os1_16", 0.0); }
-void BM_Vlp16Sweep(benchmark::State& s) { sweep(s, "vlp16", 0.0); }
+void BM_Os1_64Sweep(benchmark::State& s) {
+  sweep(s, "os1_64", 0.0);
+}
+void BM_Os1_64SweepFoliagePass(benchmark::State& s) {
+  sweep(s, "os1_64", 0.3);
+}
+void BM_Os1_16Sweep(benchmark::State& s) {
+  sweep(s, "os1_16", 0.0);
+}
+void BM_Vlp16Sweep(benchmark::State& s) {
+  sweep(s, "vlp16", 0.0);
+}
 
 void BM_Lms1081Scan(benchmark::State& state) {
   const auto& w = world();
@@ -183,8 +194,12 @@ void raw_rays(benchmark::State& state, bool batch) {
       benchmark::Counter(double(o.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void BM_RawRays65kBatch16(benchmark::State& s) { raw_rays(s, true); }
-void BM_RawRays65kSingle(benchmark::State& s) { raw_rays(s, false); }
+void BM_RawRays65kBatch16(benchmark::State& s) {
+  raw_rays(s, true);
+}
+void BM_RawRays65kSingle(benchmark::State& s) {
+  raw_rays(s, false);
+}
 
 }  // namespace
 

@@ -13,9 +13,9 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kMaxFoliagePasses = 8;
-constexpr float kPassEpsilon = 0.02f;  // [m] a passed ray continues this far past the leaf
-constexpr int kKnotStride = 16;        // columns between exact PoseAt evaluations
-constexpr std::size_t kPacket = 16;    // rays per Embree packet (RayCaster::cast_batch)
+constexpr float kPassEpsilon = 0.02f;       // [m] a passed ray continues this far past the leaf
+constexpr int kKnotStride = 16;             // columns between exact PoseAt evaluations
+constexpr std::size_t kPacket = 16;         // rays per Embree packet (RayCaster::cast_batch)
 constexpr float kIntensityFalloff = 30.0f;  // [m] range at which intensity halves
 
 bool is_foliage(SurfaceClass c) {
@@ -27,16 +27,24 @@ bool is_foliage(SurfaceClass c) {
 /// soil less, galvanised wire and posts most.
 float reflectivity(SurfaceClass c) {
   switch (c) {
-    case SurfaceClass::ground: return 0.25f;
-    case SurfaceClass::trunk: return 0.35f;
+    case SurfaceClass::ground:
+      return 0.25f;
+    case SurfaceClass::trunk:
+      return 0.35f;
     case SurfaceClass::canopy:
     case SurfaceClass::crown:
-    case SurfaceClass::crop: return 0.5f;
-    case SurfaceClass::weed: return 0.45f;
-    case SurfaceClass::post: return 0.6f;
-    case SurfaceClass::wire: return 0.8f;
-    case SurfaceClass::obstacle: return 0.4f;
-    case SurfaceClass::other: break;
+    case SurfaceClass::crop:
+      return 0.5f;
+    case SurfaceClass::weed:
+      return 0.45f;
+    case SurfaceClass::post:
+      return 0.6f;
+    case SurfaceClass::wire:
+      return 0.8f;
+    case SurfaceClass::obstacle:
+      return 0.4f;
+    case SurfaceClass::other:
+      break;
   }
   return 0.3f;
 }
@@ -58,7 +66,8 @@ Lidar::Lidar(const LidarConfig& config, std::uint64_t seed)
   const double inc = config_.azimuth_increment();
   const double a0 = -0.5 * core::deg2rad(config_.horizontal_fov_deg);
   column_dt_ = inc / (2.0 * std::numbers::pi * config_.rate_hz);
-  if (config_.horizontal_fov_deg >= 360.0 - 1e-9) column_dt_ = 1.0 / (config_.rate_hz * config_.columns);
+  if (config_.horizontal_fov_deg >= 360.0 - 1e-9)
+    column_dt_ = 1.0 / (config_.rate_hz * config_.columns);
   const auto elev = config_.ring_elevations();
   local_dirs_.reserve(std::size_t(config_.columns) * elev.size());
   for (int c = 0; c < config_.columns; ++c) {
@@ -69,13 +78,13 @@ Lidar::Lidar(const LidarConfig& config, std::uint64_t seed)
                                static_cast<float>(std::sin(e)));
   }
   for (int r = 0; r < config_.rings; ++r) all_rings_.push_back(r);
-  const auto flat = std::min_element(elev.begin(), elev.end(), [](double x, double y) {
-    return std::abs(x) < std::abs(y);
-  });
+  const auto flat = std::min_element(elev.begin(), elev.end(),
+                                     [](double x, double y) { return std::abs(x) < std::abs(y); });
   planar_ring_ = {static_cast<int>(flat - elev.begin())};
   // Square-ish packets: pc columns x (16 / pc) rings with pc * azimuth step ~ (16 / pc) * ring
   // step, pc a power of two.
-  const double ring_step = elev.size() > 1 ? (elev.back() - elev.front()) / double(elev.size() - 1) : 0.0;
+  const double ring_step =
+      elev.size() > 1 ? (elev.back() - elev.front()) / double(elev.size() - 1) : 0.0;
   const double ideal = inc > 0.0 ? std::sqrt(double(kPacket) * ring_step / inc) : 1.0;
   packet_columns_ = 1;
   while (packet_columns_ < kPacket && double(packet_columns_) * 1.5 < ideal) packet_columns_ *= 2;

@@ -76,8 +76,7 @@ void LidarConfig::validate() const {
   }
   core::check_range(vertical_fov_min_deg, -90.0, 90.0, "vertical_fov_min_deg");
   core::check_range(vertical_fov_max_deg, -90.0, 90.0, "vertical_fov_max_deg");
-  check(vertical_fov_max_deg > vertical_fov_min_deg || rings == 1 ||
-            !vertical_angles_deg.empty(),
+  check(vertical_fov_max_deg > vertical_fov_min_deg || rings == 1 || !vertical_angles_deg.empty(),
         "vertical_fov_max_deg", "must be > vertical_fov_min_deg");
   check(horizontal_fov_deg > 0.0 && horizontal_fov_deg <= 360.0, "horizontal_fov_deg",
         "must be in (0, 360]");
@@ -112,7 +111,8 @@ std::vector<double> LidarConfig::ring_elevations() const {
       out[r] = core::deg2rad(0.5 * (vertical_fov_min_deg + vertical_fov_max_deg));
     } else {
       const double f = static_cast<double>(r) / (rings - 1);
-      out[r] = core::deg2rad(vertical_fov_min_deg + f * (vertical_fov_max_deg - vertical_fov_min_deg));
+      out[r] =
+          core::deg2rad(vertical_fov_min_deg + f * (vertical_fov_max_deg - vertical_fov_min_deg));
     }
   }
   return out;

@@ -23,8 +23,12 @@ constexpr int kPacket = 16;
 class FlushDenormals {
  public:
 #if defined(__SSE__)
-  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ | DAZ
-  ~FlushDenormals() { _mm_setcsr(saved_); }
+  FlushDenormals() : saved_(_mm_getcsr()) {
+    _mm_setcsr(saved_ | 0x8040u);
+  }  // FTZ | DAZ
+  ~FlushDenormals() {
+    _mm_setcsr(saved_);
+  }
   FlushDenormals(const FlushDenormals&) = delete;
   FlushDenormals& operator=(const FlushDenormals&) = delete;
 
@@ -36,8 +40,8 @@ class FlushDenormals {
 void throw_on_error(RTCDevice device, const char* what) {
   const RTCError e = rtcGetDeviceError(device);
   if (e != RTC_ERROR_NONE)
-    throw std::runtime_error(std::string("RayCaster: Embree error ") + std::to_string(e) +
-                             " in " + what);
+    throw std::runtime_error(std::string("RayCaster: Embree error ") + std::to_string(e) + " in " +
+                             what);
 }
 
 void check_mesh(const TriangleMesh& world) {
@@ -118,8 +122,7 @@ struct RayCaster::Impl {
 };
 
 void RayCaster::Impl::cast16(const Eigen::Vector3f* o, const Eigen::Vector3f* d, int count,
-                             const float* t_min, float t_min_all, float t_max,
-                             RayHit* out) const {
+                             const float* t_min, float t_min_all, float t_max, RayHit* out) const {
   alignas(64) int valid[kPacket];
   alignas(64) RTCRayHit16 rh;
   for (int i = 0; i < kPacket; ++i) {
@@ -184,7 +187,8 @@ RayHit RayCaster::cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& uni
   rtcInitIntersectContext(&ctx);
   const FlushDenormals ftz;
   rtcIntersect1(impl_->scene, &ctx, &rh);
-  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) impl_->fill(rh.hit.primID, rh.ray.tfar, unit_dir, out);
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+    impl_->fill(rh.hit.primID, rh.ray.tfar, unit_dir, out);
   return out;
 }
 
@@ -206,6 +210,8 @@ void RayCaster::cast_batch(const Eigen::Vector3f* origins, const Eigen::Vector3f
   }
 }
 
-std::size_t RayCaster::triangle_count() const { return impl_->labels.size(); }
+std::size_t RayCaster::triangle_count() const {
+  return impl_->labels.size();
+}
 
 }  // namespace rownav::sim

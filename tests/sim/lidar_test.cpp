@@ -38,7 +38,8 @@ TriangleMesh room(float x0, float x1, float y0, float y1) {
   const float hy = std::max(-y0, y1) + 1.0f, hx = std::max(-x0, x1) + 1.0f;
   m.append(wall_x(x0, hy, SurfaceClass::obstacle));
   m.append(wall_x(x1, hy, SurfaceClass::obstacle));
-  const Eigen::Isometry3f rot(Eigen::AngleAxisf(std::numbers::pi_v<float> / 2, Eigen::Vector3f::UnitZ()));
+  const Eigen::Isometry3f rot(
+      Eigen::AngleAxisf(std::numbers::pi_v<float> / 2, Eigen::Vector3f::UnitZ()));
   m.append(wall_x(y0, hx, SurfaceClass::obstacle), rot);  // x = y0 rotated to y = y0
   m.append(wall_x(y1, hx, SurfaceClass::obstacle), rot);
   return m;
@@ -60,7 +61,8 @@ PoseAt still(const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity()) {
 }
 
 TEST(LidarConfig, PresetsValidateAndMatchDatasheets) {
-  for (const auto& name : lidar_preset_names()) EXPECT_NO_THROW(lidar_preset(name).validate()) << name;
+  for (const auto& name : lidar_preset_names())
+    EXPECT_NO_THROW(lidar_preset(name).validate()) << name;
   EXPECT_EQ(lidar_preset_names().size(), 6u);
   EXPECT_EQ(lidar_preset("os1_64").rings, 64);
   EXPECT_DOUBLE_EQ(lidar_preset("os1_64").vertical_fov_max_deg, 22.5);
@@ -158,9 +160,9 @@ TEST(Lidar, MountYawRotatesTheScan) {
   c.mount_rpy_deg = {0.0, 0.0, 90.0};
   Lidar lidar(c, 1);
   const core::Scan2D s = lidar.scan(world, still(), 0.0);
-  EXPECT_NEAR(s.ranges[270], 5.0, 1e-4);   // bearing 0 looks along base +y
-  EXPECT_NEAR(s.ranges[90], 6.0, 1e-4);    // bearing -90 deg looks along base +x
-  EXPECT_NEAR(s.ranges[450], 4.0, 1e-4);   // bearing +90 deg looks along base -x
+  EXPECT_NEAR(s.ranges[270], 5.0, 1e-4);  // bearing 0 looks along base +y
+  EXPECT_NEAR(s.ranges[90], 6.0, 1e-4);   // bearing -90 deg looks along base +x
+  EXPECT_NEAR(s.ranges[450], 4.0, 1e-4);  // bearing +90 deg looks along base -x
 }
 
 TEST(Lidar, SweepOverGroundRecoversRingElevations) {
@@ -336,7 +338,7 @@ TEST(Lidar, IntensityDependsOnClassRangeAndIncidence) {
   cfg.mount_xyz = {0.0, 0.0, 1.0};
   Lidar lidar(cfg, 8);
   const core::Scan2D s = lidar.scan(world, still(), 0.0);
-  const std::size_t ahead = 540, step = 80;  // 20 deg either side
+  const std::size_t ahead = 540, step = 80;                             // 20 deg either side
   EXPECT_GT(s.intensities[ahead - step], s.intensities[ahead + step]);  // wire beats ground
   EXPECT_NEAR(s.intensities[ahead - step] / s.intensities[ahead + step], 0.8 / 0.25, 1e-3);
   EXPECT_GT(s.intensities[ahead + step], s.intensities[ahead + 2 * step]);  // farther, oblique

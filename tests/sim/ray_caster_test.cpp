@@ -52,7 +52,8 @@ TriangleMesh cylinder(float cx, float cy, float r, float h, int sides, SurfaceCl
     m.add_vertex({cx + r * std::cos(a), cy + r * std::sin(a), h});
   }
   for (int i = 0; i < sides; ++i) {
-    const auto a = static_cast<std::uint32_t>(2 * i), b = static_cast<std::uint32_t>(2 * ((i + 1) % sides));
+    const auto a = static_cast<std::uint32_t>(2 * i),
+               b = static_cast<std::uint32_t>(2 * ((i + 1) % sides));
     m.add_triangle(a, b, b + 1, label);
     m.add_triangle(a, b + 1, a + 1, label);
   }
@@ -100,8 +101,8 @@ TEST(RayCaster, SkyMissesAndRangeLimits) {
   EXPECT_FALSE(rc.cast(o, Eigen::Vector3f(0, 0, 1), 0.0f, 100.0f).hit());
   EXPECT_EQ(rc.cast(o, Eigen::Vector3f(1, 0, 0), 0.0f, 100.0f).distance, kInf);
   EXPECT_NEAR(rc.cast(o, Eigen::Vector3f(0, 0, -1), 0.0f, 100.0f).distance, 1.0f, 1e-6f);
-  EXPECT_FALSE(rc.cast(o, Eigen::Vector3f(0, 0, -1), 0.0f, 0.9f).hit());   // beyond t_max
-  EXPECT_FALSE(rc.cast(o, Eigen::Vector3f(0, 0, -1), 1.1f, 100.0f).hit()); // before t_min
+  EXPECT_FALSE(rc.cast(o, Eigen::Vector3f(0, 0, -1), 0.0f, 0.9f).hit());    // beyond t_max
+  EXPECT_FALSE(rc.cast(o, Eigen::Vector3f(0, 0, -1), 1.1f, 100.0f).hit());  // before t_min
   const Eigen::Vector3f nan_o(std::nanf(""), 0, 1);
   EXPECT_FALSE(rc.cast(nan_o, Eigen::Vector3f(0, 0, -1), 0.0f, 100.0f).hit());
 }

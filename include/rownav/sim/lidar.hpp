@@ -47,8 +47,8 @@ struct LidarConfig {
   /// [-] chance a ray passes through a canopy / crown / weed / crop triangle (leaf gaps) and
   /// continues, drawn at every foliage surface it meets (at most 8 passes).
   double foliage_pass_probability = 0.0;
-  double intensity_noise_std = 0.05;  ///< [-] relative gaussian noise on intensity
-  Eigen::Vector3d mount_xyz{0.3, 0.0, 0.6};  ///< [m] T_base_lidar translation
+  double intensity_noise_std = 0.05;             ///< [-] relative gaussian noise on intensity
+  Eigen::Vector3d mount_xyz{0.3, 0.0, 0.6};      ///< [m] T_base_lidar translation
   Eigen::Vector3d mount_rpy_deg{0.0, 0.0, 0.0};  ///< [deg] T_base_lidar roll, pitch, yaw
   /// Pose interpolated per column (rolling shutter); false: every column uses the pose at
   /// the sweep stamp.
@@ -131,8 +131,8 @@ class Lidar {
   LidarConfig config_;
   std::mt19937_64 rng_;
   Eigen::Isometry3d T_base_lidar_;
-  double column_dt_ = 0.0;                  // [s] between columns
-  std::size_t packet_columns_ = 16;         // columns in one 16-ray packet (see cast_all)
+  double column_dt_ = 0.0;                   // [s] between columns
+  std::size_t packet_columns_ = 16;          // columns in one 16-ray packet (see cast_all)
   std::vector<Eigen::Vector3f> local_dirs_;  // column-major: [c * rings + r], LiDAR frame
   std::vector<int> all_rings_;               // 0..rings-1
   std::vector<int> planar_ring_;             // the ring scan() uses
