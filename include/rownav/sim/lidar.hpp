@@ -85,7 +85,8 @@ struct LidarConfig {
 };
 
 /// Pose source: T_world_base at absolute time t [s] (the simulator interpolates the robot
-/// trajectory, terrain z / roll / pitch included).
+/// trajectory, terrain z / roll / pitch included). A Lidar evaluates it at the sweep stamp and
+/// every 16th column (and the last), and interpolates the columns in between (lerp + slerp).
 using PoseAt = std::function<Eigen::Isometry3d(double t)>;
 
 /// A simulated LiDAR. Not thread-safe (owns its random generator); use one per thread.
