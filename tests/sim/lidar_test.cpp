@@ -257,6 +257,35 @@ TEST(Lidar, MotionDuringSweepShiftsLaterColumns) {
   }
 }
 
+TEST(Lidar, PointsDeskewedWithTheirOwnPoseLieOnTheWalls) {
+  const RayCaster world(room(-10, 10, -10, 10));
+  LidarConfig c = flat_spinner(true);
+  c.mount_xyz = {0.3, 0.1, 0.5};
+  c.mount_rpy_deg = {0.0, 0.0, 30.0};
+  const PoseAt turning = [](double t) {  // 1.5 m/s forward-left while yawing at 2 rad/s
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(1.5 * t, 0.5 * t, 0.0);
+    T.linear() = Eigen::AngleAxisd(2.0 * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return T;
+  };
+  Lidar lidar(c, 6);
+  const double stamp = 0.4;
+  const auto cloud = lidar.sweep(world, turning, stamp);
+  ASSERT_EQ(cloud.size(), 1024u);
+  const Eigen::Isometry3d T_base_lidar = c.T_base_lidar();
+  double worst = 0.0, worst_static = 0.0;
+  for (const auto& p : cloud.points) {
+    const Eigen::Vector3d q(p.x, p.y, p.z);
+    const Eigen::Vector3d w = turning(stamp + p.time) * T_base_lidar * q;
+    const Eigen::Vector3d w0 = turning(stamp) * T_base_lidar * q;  // ignoring the motion
+    worst = std::max(worst, std::abs(10.0 - std::max(std::abs(w.x()), std::abs(w.y()))));
+    worst_static =
+        std::max(worst_static, std::abs(10.0 - std::max(std::abs(w0.x()), std::abs(w0.y()))));
+  }
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_GT(worst_static, 0.1);  // the motion matters: without it the walls smear
+}
+
 TEST(Lidar, FoliagePassThroughFractionMatchesProbability) {
   TriangleMesh m = wall_x(4.0f, 20.0f, SurfaceClass::canopy);
   m.append(wall_x(7.0f, 30.0f, SurfaceClass::post));
