@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace rownav::sim {
@@ -158,6 +159,27 @@ TEST(RayCaster, BatchMatchesSingleForAnySize) {
         EXPECT_EQ(a[i].label, b[i].label);
       }
     }
+  }
+}
+
+TEST(RayCaster, ConcurrentConstCallsAgree) {
+  TriangleMesh world = plane(0.0f, 20.0f, 16, SurfaceClass::ground);
+  world.append(box({1, -1, 0}, {2, 1, 2}, SurfaceClass::post));
+  const RayCaster rc(world);
+  std::vector<Eigen::Vector3f> o(4096, Eigen::Vector3f(0, 0, 1)), d(4096);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const float a = 0.01f * static_cast<float>(i), e = -0.5f + 0.0002f * static_cast<float>(i);
+    d[i] = Eigen::Vector3f(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+  }
+  std::vector<RayHit> ref(d.size()), a(d.size()), b(d.size());
+  rc.cast_batch(o.data(), d.data(), d.size(), 0.0f, 50.0f, ref.data());
+  std::thread ta([&] { rc.cast_batch(o.data(), d.data(), d.size(), 0.0f, 50.0f, a.data()); });
+  std::thread tb([&] { rc.cast_batch(o.data(), d.data(), d.size(), 0.0f, 50.0f, b.data()); });
+  ta.join();
+  tb.join();
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    ASSERT_EQ(a[i].distance, ref[i].distance) << i;
+    ASSERT_EQ(b[i].distance, ref[i].distance) << i;
   }
 }
 
