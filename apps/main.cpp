@@ -1,13 +1,29 @@
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 
+#include "commands.hpp"
 #include "rownav/core/version.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"rownav: map-free LiDAR row navigation for vineyards, orchards and row crops"};
+  CLI::App app{
+      "rownav: map-free LiDAR row navigation for vineyards, orchards and row crops.\n"
+      "Frames: x forward, y left, z up (REP 103); lengths in metres, angles in degrees on the "
+      "command line and in configs."};
   app.set_version_flag("--version", rownav::core::version());
-  app.require_subcommand(0);
-  CLI11_PARSE(app, argc, argv);
-  std::cout << app.help();
+  app.require_subcommand(1);
+  rownav::app::add_sim_command(app);
+  rownav::app::add_render_command(app);
+  rownav::app::add_demo_command(app);
+  rownav::app::add_config_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    // One line: the file, the position and the reason (io::InputError) or the failing check.
+    std::cerr << "rownav: error: " << e.what() << "\n";
+    return 2;
+  }
   return 0;
 }

@@ -1,0 +1,44 @@
+#include "setup.hpp"
+
+#include <cmath>
+
+#include "rownav/io/field_builder.hpp"
+#include "rownav/io/sim_setup.hpp"
+#include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/lidar_presets.hpp"
+
+namespace rownav::app {
+
+sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out) {
+  const auto config = io::load_config<sim::FieldConfig>(file);
+  if (config_out) *config_out = config;
+  return io::build_field(config, file.parent_path());
+}
+
+sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file) {
+  return file ? io::load_config<sim::RobotConfig>(*file) : sim::RobotConfig{};
+}
+
+sim::SimConfig load_sensors(const std::optional<std::filesystem::path>& file,
+                            const std::string& lidar_preset_override) {
+  sim::SimConfig config = file ? io::load_sim_config(*file) : sim::SimConfig{};
+  if (!lidar_preset_override.empty()) {
+    const Eigen::Vector3d xyz = config.lidar.mount_xyz, rpy = config.lidar.mount_rpy_deg;
+    config.lidar = sim::lidar_preset(lidar_preset_override);
+    config.lidar.mount_xyz = xyz;
+    config.lidar.mount_rpy_deg = rpy;
+  }
+  return config;
+}
+
+sim::PathConfig load_path(const std::optional<std::filesystem::path>& file) {
+  return file ? io::load_config<sim::PathConfig>(*file) : sim::PathConfig{};
+}
+
+core::Pose2 path_start(const std::vector<sim::PathPoint>& path) {
+  if (path.size() < 2) return {};
+  const Eigen::Vector2d d = path[1].p - path[0].p;
+  return {path[0].p.x(), path[0].p.y(), std::atan2(d.y(), d.x())};
+}
+
+}  // namespace rownav::app

@@ -1,0 +1,35 @@
+#pragma once
+/// @file setup.hpp Loading the field / robot / sensors / path files the commands take.
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "rownav/sim/field.hpp"
+#include "rownav/sim/field_config.hpp"
+#include "rownav/sim/robot.hpp"
+#include "rownav/sim/scripted_path.hpp"
+#include "rownav/sim/simulator.hpp"
+
+namespace rownav::app {
+
+/// Everything a simulated drive needs.
+struct Setup {
+  sim::FieldConfig field_config;
+  sim::Field field;
+  sim::RobotConfig robot;
+  sim::SimConfig sensors;
+  sim::PathConfig path;
+};
+
+/// Builds the field of a field YAML (relative paths inside resolve against its folder).
+sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out = nullptr);
+sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file);
+sim::SimConfig load_sensors(const std::optional<std::filesystem::path>& file,
+                            const std::string& lidar_preset_override);
+sim::PathConfig load_path(const std::optional<std::filesystem::path>& file);
+
+/// Starting pose: on the path's first point, facing its second.
+core::Pose2 path_start(const std::vector<sim::PathPoint>& path);
+
+}  // namespace rownav::app

@@ -1,0 +1,114 @@
+#pragma once
+/// @file simulator.hpp The closed simulation loop: robot dynamics, LiDAR, proprioception and
+/// ground truth at their own rates. A scripted driver or the navigation stack supplies commands.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/point_cloud.hpp"
+#include "rownav/core/scan2d.hpp"
+#include "rownav/core/sensor_samples.hpp"
+#include "rownav/core/twist.hpp"
+#include "rownav/sim/field.hpp"
+#include "rownav/sim/field_truth.hpp"
+#include "rownav/sim/ground_truth.hpp"
+#include "rownav/sim/lidar.hpp"
+#include "rownav/sim/lidar_presets.hpp"
+#include "rownav/sim/proprioception.hpp"
+#include "rownav/sim/ray_caster.hpp"
+#include "rownav/sim/robot.hpp"
+
+namespace rownav::sim {
+
+/// Sensor suite and loop rates of a simulation.
+struct SimConfig {
+  LidarConfig lidar = lidar_preset("os1_16");  ///< LiDAR model (rate, FOV, noise, mount)
+  EncoderConfig encoders;  ///< wheel encoders
+  ImuConfig imu;           ///< IMU
+  GnssConfig gnss;         ///< GNSS (disabled by default: rownav is map-free and RTK-free)
+  double physics_rate_hz = 100.0;      ///< [Hz] robot integration rate
+  double ground_truth_rate_hz = 20.0;  ///< [Hz] ground-truth samples emitted
+  double truth_reach = 10.0;           ///< [m] rows within this distance are listed in the truth
+  std::uint64_t seed = 1;              ///< seeds every noise source
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("lidar", s.lidar);
+    v("encoders", s.encoders);
+    v("imu", s.imu);
+    v("gnss", s.gnss);
+    v("physics_rate_hz", s.physics_rate_hz);
+    v("ground_truth_rate_hz", s.ground_truth_rate_hz);
+    v("truth_reach", s.truth_reach);
+    v("seed", s.seed);
+  }
+  void validate() const;
+};
+
+/// Receives what the simulator produces, in time order. Default implementations ignore data.
+class SimSink {
+ public:
+  virtual ~SimSink() = default;
+  /// A 3D sweep (spinning LiDAR), stamped at its start, emitted when the sweep ends.
+  virtual void on_cloud(const core::PointCloud&, const std::vector<SurfaceClass>& /*labels*/) {}
+  /// A planar scan (2D LiDAR).
+  virtual void on_scan(const core::Scan2D&, const std::vector<SurfaceClass>& /*labels*/) {}
+  virtual void on_encoders(const core::WheelEncoderSample&) {}
+  virtual void on_imu(const core::ImuSample&) {}
+  virtual void on_gnss(const core::GnssFix&) {}
+  virtual void on_ground_truth(const GroundTruth&) {}
+};
+
+/// Steps a robot through a field. Construction builds the Embree scene (may throw on bad
+/// configs); step() never throws.
+class Simulator {
+ public:
+  Simulator(const Field& field, const RobotConfig& robot, const SimConfig& config,
+            const core::Pose2& start);
+
+  /// Applies `cmd` for one physics step (1 / physics_rate_hz) and emits the sensor data that
+  /// falls due in that step.
+  void step(const core::Twist2& cmd, SimSink& sink);
+
+  double time() const { return robot_.state().stamp; }
+  double dt() const { return dt_; }
+  const RobotState& robot_state() const { return robot_.state(); }
+  const Robot& robot() const { return robot_; }
+  /// Ground truth of the last step.
+  const GroundTruth& ground_truth() const { return truth_now_; }
+  const FieldTruth& field_truth() const { return truth_; }
+  const RayCaster& world() const { return caster_; }
+  const Lidar& lidar() const { return lidar_; }
+  const SimConfig& config() const { return config_; }
+  /// T_world_base in 3D (terrain height, roll and pitch) for a planar pose.
+  Eigen::Isometry3d pose3d(const core::Pose2& T_world_base) const;
+
+ private:
+  void emit_lidar(SimSink& sink);
+  void emit_proprioception(SimSink& sink);
+  Eigen::Isometry3d pose_at(double t) const;
+  void update_truth();
+
+  const Field& field_;
+  SimConfig config_;
+  double dt_;
+  Robot robot_;
+  RayCaster caster_;
+  Lidar lidar_;
+  FieldTruth truth_;
+  CrushCounter crush_;
+  WheelEncoders encoders_;
+  Imu imu_;
+  Gnss gnss_;
+  GroundTruth truth_now_;
+  std::deque<std::pair<double, Eigen::Isometry3d>> history_;  // recent T_world_base for sweeps
+  double next_sweep_ = 0.0, next_encoders_ = 0.0, next_imu_ = 0.0, next_gnss_ = 0.0,
+         next_truth_ = 0.0;
+  core::Twist2 last_twist_;
+};
+
+}  // namespace rownav::sim

@@ -1,0 +1,143 @@
+#include "rownav/sim/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rownav::sim {
+
+namespace {
+
+// Pose of a base resting on the terrain: z from the height field, roll / pitch from the normal.
+Eigen::Isometry3d on_terrain(const Terrain& terrain, const core::Pose2& p) {
+  const Eigen::Vector3d n = terrain.normal(p.x, p.y);
+  const Eigen::Vector3d heading(std::cos(p.theta), std::sin(p.theta), 0.0);
+  const Eigen::Vector3d x = (heading - heading.dot(n) * n).normalized();
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = n.cross(x);
+  R.col(2) = n;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = R;
+  T.translation() = Eigen::Vector3d(p.x, p.y, terrain.height(p.x, p.y));
+  return T;
+}
+
+Eigen::Isometry3d lerp(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(a.linear())
+                   .slerp(s, Eigen::Quaterniond(b.linear()))
+                   .toRotationMatrix();
+  T.translation() = (1.0 - s) * a.translation() + s * b.translation();
+  return T;
+}
+
+}  // namespace
+
+void SimConfig::validate() const {
+  core::validate_nested(lidar, "lidar");
+  core::validate_nested(encoders, "encoders");
+  core::validate_nested(imu, "imu");
+  core::validate_nested(gnss, "gnss");
+  core::check_range(physics_rate_hz, 10.0, 10000.0, "physics_rate_hz");
+  core::check_range(ground_truth_rate_hz, 0.1, physics_rate_hz, "ground_truth_rate_hz");
+  core::check_positive(truth_reach, "truth_reach");
+}
+
+Simulator::Simulator(const Field& field, const RobotConfig& robot, const SimConfig& config,
+                     const core::Pose2& start)
+    : field_(field),
+      config_(config),
+      dt_(1.0 / config.physics_rate_hz),
+      robot_(robot, config.seed * 7919 + 1, start),
+      caster_(field.mesh),
+      lidar_(config.lidar, config.seed * 7919 + 2),
+      truth_(field),
+      crush_(field),
+      encoders_(config.encoders, config.seed * 7919 + 3),
+      imu_(config.imu, config.seed * 7919 + 4),
+      gnss_(config.gnss, config.seed * 7919 + 5) {
+  config_.validate();
+  history_.emplace_back(0.0, pose3d(start));
+  update_truth();
+}
+
+Eigen::Isometry3d Simulator::pose3d(const core::Pose2& T_world_base) const {
+  return on_terrain(field_.terrain, T_world_base);
+}
+
+Eigen::Isometry3d Simulator::pose_at(double t) const {
+  // The history holds every physics step since before the current sweep began.
+  if (t <= history_.front().first) return history_.front().second;
+  for (std::size_t i = 1; i < history_.size(); ++i) {
+    const auto& [t1, T1] = history_[i];
+    if (t <= t1) {
+      const auto& [t0, T0] = history_[i - 1];
+      return lerp(T0, T1, (t - t0) / std::max(t1 - t0, 1e-9));
+    }
+  }
+  return history_.back().second;
+}
+
+void Simulator::update_truth() {
+  const RobotState& s = robot_.state();
+  truth_now_ = truth_.at(s.pose, s.stamp, config_.truth_reach);
+  // Roll / pitch of the base on the terrain (ZYX convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
+  const Eigen::Isometry3d& T = history_.back().second;
+  const Eigen::Matrix3d& R = T.linear();
+  truth_now_.z = T.translation().z();
+  truth_now_.pitch = -std::asin(std::clamp(R(2, 0), -1.0, 1.0));
+  truth_now_.roll = std::atan2(R(2, 1), R(2, 2));
+  truth_now_.twist = s.twist;
+  truth_now_.plants_crushed = crush_.total();
+}
+
+void Simulator::step(const core::Twist2& cmd, SimSink& sink) {
+  robot_.step(cmd, dt_);
+  const double t = time();
+  history_.emplace_back(t, pose3d(robot_.state().pose));
+  const double keep = 2.0 / config_.lidar.rate_hz + 0.1;
+  while (history_.size() > 2 && history_[1].first < t - keep) history_.pop_front();
+  crush_.update(robot_.footprint_world());
+  update_truth();
+  emit_proprioception(sink);
+  emit_lidar(sink);
+  if (t + 1e-9 >= next_truth_) {
+    sink.on_ground_truth(truth_now_);
+    next_truth_ += 1.0 / config_.ground_truth_rate_hz;
+  }
+  last_twist_ = robot_.state().twist;
+}
+
+void Simulator::emit_proprioception(SimSink& sink) {
+  const double t = time();
+  const RobotState& s = robot_.state();
+  if (t + 1e-9 >= next_encoders_) {
+    sink.on_encoders(encoders_.sample(s));
+    next_encoders_ += 1.0 / config_.encoders.rate_hz;
+  }
+  if (t + 1e-9 >= next_imu_) {
+    sink.on_imu(imu_.sample(s, truth_now_.roll, truth_now_.pitch));
+    next_imu_ += 1.0 / config_.imu.rate_hz;
+  }
+  if (config_.gnss.enabled && t + 1e-9 >= next_gnss_) {
+    const Eigen::Vector3d p(s.pose.x, s.pose.y, truth_now_.z);
+    sink.on_gnss(gnss_.sample(t, p, truth_now_.place));
+    next_gnss_ += 1.0 / config_.gnss.rate_hz;
+  }
+}
+
+void Simulator::emit_lidar(SimSink& sink) {
+  // A sweep that started at next_sweep_ is complete once a full period has elapsed.
+  const double period = 1.0 / config_.lidar.rate_hz;
+  if (time() + 1e-9 < next_sweep_ + period) return;
+  const PoseAt pose = [this](double t) { return pose_at(t); };
+  std::vector<SurfaceClass> labels;
+  if (config_.lidar.kind == LidarKind::spinning) {
+    sink.on_cloud(lidar_.sweep(caster_, pose, next_sweep_, &labels), labels);
+  } else {
+    sink.on_scan(lidar_.scan(caster_, pose, next_sweep_, &labels), labels);
+  }
+  next_sweep_ += period;
+}
+
+}  // namespace rownav::sim
