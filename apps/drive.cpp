@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "rownav/io/progress.hpp"
 
@@ -48,7 +49,8 @@ DriveSummary run_scripted_drive(sim::Simulator& sim, sim::PathFollower& driver,
                                 sim::SimSink& sink, double max_time, bool progress) {
   DriveSummary out;
   Collector collector(sink, out);
-  io::Progress bar("simulating", 100.0);
+  std::optional<io::Progress> bar;
+  if (progress) bar.emplace("simulating", 100.0);
   const auto t0 = std::chrono::steady_clock::now();
   bool middle_taken = false;
   while (!driver.done() && sim.time() < max_time) {
@@ -57,9 +59,9 @@ DriveSummary run_scripted_drive(sim::Simulator& sim, sim::PathFollower& driver,
       out.middle_truth = sim.ground_truth();
       middle_taken = true;
     }
-    if (progress) bar.update(100.0 * driver.progress());
+    if (bar) bar->update(100.0 * driver.progress());
   }
-  if (progress) bar.finish();
+  if (bar) bar->finish();
   out.completed = driver.done();
   out.sim_time = sim.time();
   out.wall_time =

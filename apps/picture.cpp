@@ -51,8 +51,10 @@ void write_picture(const std::filesystem::path& out, const sim::Field& field,
   io::draw_field(*canvas, field, options);
   if (!content.trajectory.empty()) io::draw_path(*canvas, content.trajectory, path_style);
   if (content.cloud) {
-    io::draw_cloud(*canvas, *content.cloud, content.T_world_lidar, content.ground_z - 0.1,
-                   content.ground_z + 2.1);
+    // Colour by height above the ground under the robot, not by world z (sloped fields).
+    const Eigen::Isometry3d T_level_lidar =
+        Eigen::Translation3d(0.0, 0.0, -content.ground_z) * content.T_world_lidar;
+    io::draw_cloud(*canvas, *content.cloud, T_level_lidar, -0.1, 2.1);
   }
   if (content.scan) {
     const Eigen::Isometry3d& T = content.T_world_lidar;

@@ -57,6 +57,38 @@ void BM_Drive120sOs1_16(benchmark::State& state) {
 }
 BENCHMARK(BM_Drive120sOs1_16)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
+// One sweep / scan in the generated benchmark vineyard (the lidar bench uses its own scene).
+void sweep_in_bench_field(benchmark::State& state, const char* preset) {
+  const sim::Field& field = bench_field();
+  const sim::FieldTruth truth(field);
+  const auto& c = truth.corridor_centre(0, 9);
+  const Eigen::Vector2d p = c[c.size() / 2], d = c[c.size() / 2 + 1] - p;
+  sim::SimConfig sensors;
+  sensors.lidar = sim::lidar_preset(preset);
+  const sim::Simulator simulator(field, sim::RobotConfig{}, sensors,
+                                 {p.x(), p.y(), std::atan2(d.y(), d.x())});
+  const Eigen::Isometry3d T = simulator.pose3d({p.x(), p.y(), std::atan2(d.y(), d.x())});
+  const sim::PoseAt pose = [&](double) { return T; };
+  sim::Lidar lidar(sensors.lidar, 1);
+  std::size_t n = 0;
+  for (auto _ : state) {
+    if (sensors.lidar.kind == sim::LidarKind::spinning) {
+      n = lidar.sweep(simulator.world(), pose, 0.0).size();
+    } else {
+      n = lidar.scan(simulator.world(), pose, 0.0).to_points().size();
+    }
+    benchmark::DoNotOptimize(n);
+  }
+  state.counters["points"] = static_cast<double>(n);
+  state.counters["triangles"] = static_cast<double>(field.mesh.triangle_count());
+}
+void BM_GeneratedFieldOs1_64(benchmark::State& s) { sweep_in_bench_field(s, "os1_64"); }
+void BM_GeneratedFieldOs1_16(benchmark::State& s) { sweep_in_bench_field(s, "os1_16"); }
+void BM_GeneratedFieldLms1081(benchmark::State& s) { sweep_in_bench_field(s, "lms_1081"); }
+BENCHMARK(BM_GeneratedFieldOs1_64)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeneratedFieldOs1_16)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeneratedFieldLms1081)->Unit(benchmark::kMicrosecond);
+
 void BM_BuildBenchField(benchmark::State& state) {
   for (auto _ : state) {
     sim::FieldConfig f;

@@ -58,13 +58,13 @@ void add_leek(TriangleMesh& m, const V3& b, float h, float w, std::mt19937_64& r
 CropPreset crop_preset(CropType crop) {
   switch (crop) {
     case CropType::cabbage:
-      return {0.3, 0.45, 0.6, 0.45};
+      return {0.3, 0.45, 0.6, 0.45, 0.25};
     case CropType::leek:
-      return {0.45, 0.13, 0.5, 0.12};
+      return {0.45, 0.13, 0.5, 0.12, 0.04};
     case CropType::maize:
       break;
   }
-  return {0.6, 0.15, 0.75, 0.5};
+  return {0.6, 0.15, 0.75, 0.5, 0.03};
 }
 
 CropPreset RowCropConfig::resolved() const {
@@ -125,7 +125,7 @@ Field generate_row_crop(const RowCropConfig& config, const TerrainConfig& terrai
       if (config.crop == CropType::maize) add_maize(field.mesh, b, h, w, rng);
       if (config.crop == CropType::cabbage) add_cabbage(field.mesh, b, h, w, rng);
       if (config.crop == CropType::leek) add_leek(field.mesh, b, h, w, rng);
-      field.plants.push_back({q, 0.5 * w, h, row.id, PlantKind::crop});
+      field.plants.push_back({q, 0.5 * p.crush_diameter * scale, h, row.id, PlantKind::crop});
     }
   }
   scatter_weeds(field, config.weeds, p.row_spacing - 0.5 * p.plant_width, rng);

@@ -91,8 +91,21 @@ void Simulator::update_truth() {
   truth_now_.plants_crushed = crush_.total();
 }
 
+namespace {
+
+// True when the next sample of a stream at `rate` is due at time t (sample n is due at n / rate).
+bool due(std::int64_t& n, double rate, double t) {
+  if (t + 1e-9 < static_cast<double>(n) / rate) return false;
+  ++n;
+  return true;
+}
+
+}  // namespace
+
 void Simulator::step(const core::Twist2& cmd, SimSink& sink) {
-  robot_.step(cmd, dt_);
+  // Step to (n + 1) dt rather than adding dt, so stamps stay on the grid instead of drifting.
+  ++n_steps_;
+  robot_.step(cmd, static_cast<double>(n_steps_) * dt_ - robot_.state().stamp);
   const double t = time();
   history_.emplace_back(t, pose3d(robot_.state().pose));
   const double keep = 2.0 / config_.lidar.rate_hz + 0.1;
@@ -101,43 +114,39 @@ void Simulator::step(const core::Twist2& cmd, SimSink& sink) {
   update_truth();
   emit_proprioception(sink);
   emit_lidar(sink);
-  if (t + 1e-9 >= next_truth_) {
-    sink.on_ground_truth(truth_now_);
-    next_truth_ += 1.0 / config_.ground_truth_rate_hz;
-  }
+  if (due(n_truth_, config_.ground_truth_rate_hz, t)) sink.on_ground_truth(truth_now_);
   last_twist_ = robot_.state().twist;
 }
 
 void Simulator::emit_proprioception(SimSink& sink) {
   const double t = time();
   const RobotState& s = robot_.state();
-  if (t + 1e-9 >= next_encoders_) {
-    sink.on_encoders(encoders_.sample(s));
-    next_encoders_ += 1.0 / config_.encoders.rate_hz;
+  if (due(n_encoders_, config_.encoders.rate_hz, t)) {
+    core::WheelEncoderSample e = encoders_.sample(s);
+    if (robot_.config().drive != DriveKind::ackermann) e.steering_angle = 0.0;  // no such sensor
+    sink.on_encoders(e);
   }
-  if (t + 1e-9 >= next_imu_) {
+  if (due(n_imu_, config_.imu.rate_hz, t))
     sink.on_imu(imu_.sample(s, truth_now_.roll, truth_now_.pitch));
-    next_imu_ += 1.0 / config_.imu.rate_hz;
-  }
-  if (config_.gnss.enabled && t + 1e-9 >= next_gnss_) {
+  if (config_.gnss.enabled && due(n_gnss_, config_.gnss.rate_hz, t)) {
     const Eigen::Vector3d p(s.pose.x, s.pose.y, truth_now_.z);
     sink.on_gnss(gnss_.sample(t, p, truth_now_.place));
-    next_gnss_ += 1.0 / config_.gnss.rate_hz;
   }
 }
 
 void Simulator::emit_lidar(SimSink& sink) {
-  // A sweep that started at next_sweep_ is complete once a full period has elapsed.
-  const double period = 1.0 / config_.lidar.rate_hz;
-  if (time() + 1e-9 < next_sweep_ + period) return;
+  // Sweep n starts at n / rate and is complete (emitted) one period later.
+  const double rate = config_.lidar.rate_hz;
+  const double start = static_cast<double>(n_sweeps_) / rate;
+  if (time() + 1e-9 < static_cast<double>(n_sweeps_ + 1) / rate) return;
+  ++n_sweeps_;
   const PoseAt pose = [this](double t) { return pose_at(t); };
   std::vector<SurfaceClass> labels;
   if (config_.lidar.kind == LidarKind::spinning) {
-    sink.on_cloud(lidar_.sweep(caster_, pose, next_sweep_, &labels), labels);
+    sink.on_cloud(lidar_.sweep(caster_, pose, start, &labels), labels);
   } else {
-    sink.on_scan(lidar_.scan(caster_, pose, next_sweep_, &labels), labels);
+    sink.on_scan(lidar_.scan(caster_, pose, start, &labels), labels);
   }
-  next_sweep_ += period;
 }
 
 }  // namespace rownav::sim

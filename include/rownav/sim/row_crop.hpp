@@ -22,10 +22,11 @@ struct CropPreset {
   double plant_spacing;  ///< [m] along the row
   double row_spacing;    ///< [m]
   double plant_width;    ///< [m] diameter of the plant seen from above
+  double crush_diameter; ///< [m] what a wheel crushes: maize / leek stem, cabbage head
 };
 
 /// Preset of a crop: maize 0.6 m tall, 0.15 m apart, rows 0.75 m; cabbage 0.3 m, 0.45 m, 0.6 m;
-/// leek 0.45 m, 0.13 m, 0.5 m.
+/// leek 0.45 m, 0.13 m, 0.5 m. Leaves may be brushed; only the stem (head) counts as crushed.
 CropPreset crop_preset(CropType crop);
 
 /// Row-crop geometry. Rows run along +x from x = 0, row k at y = k * row_spacing.

@@ -106,8 +106,9 @@ class Simulator {
   Gnss gnss_;
   GroundTruth truth_now_;
   std::deque<std::pair<double, Eigen::Isometry3d>> history_;  // recent T_world_base for sweeps
-  double next_sweep_ = 0.0, next_encoders_ = 0.0, next_imu_ = 0.0, next_gnss_ = 0.0,
-         next_truth_ = 0.0;
+  // Samples emitted so far per stream; due times are n / rate, so stamps do not drift.
+  std::int64_t n_sweeps_ = 0, n_encoders_ = 0, n_imu_ = 0, n_gnss_ = 0, n_truth_ = 0;
+  std::int64_t n_steps_ = 0;
   core::Twist2 last_twist_;
 };
 
