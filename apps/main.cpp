@@ -1,6 +1,8 @@
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
 #include "rownav/core/version.hpp"
@@ -19,7 +21,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // Bad command line (missing option, nonexistent file, ...): the same one-line form.
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    std::cerr << "rownav: error: " << what << " (see --help)\n";
+    return 2;
   } catch (const std::exception& e) {
     // One line: the file, the position and the reason (io::InputError) or the failing check.
     std::cerr << "rownav: error: " << e.what() << "\n";

@@ -12,7 +12,23 @@ namespace rownav::app {
 sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out) {
   const auto config = io::load_config<sim::FieldConfig>(file);
   if (config_out) *config_out = config;
-  return io::build_field(config, file.parent_path());
+  try {
+    return io::build_field(config, file.parent_path());
+  } catch (const io::InputError& e) {
+    // A layout / mesh file that is missing, unreadable or empty has no position of its own:
+    // point at the field YAML key naming it, so the one-line error says where to fix it.
+    if (!e.position().empty()) throw;
+    const YAML::Node layout = io::load_yaml_file(file)["layout"];
+    for (const char* key : {"file", "instance_mesh", "terrain_mesh"}) {
+      const YAML::Node node = layout ? layout[key] : YAML::Node();
+      if (!node || !node.IsScalar()) continue;
+      const std::filesystem::path p(node.Scalar());
+      if ((p.is_absolute() ? p : file.parent_path() / p).string() != e.file()) continue;
+      throw io::InputError(file.string(), io::detail::yaml_position(node),
+                           std::string("layout.") + key + ": " + e.what());
+    }
+    throw;
+  }
 }
 
 sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file) {

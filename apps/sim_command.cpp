@@ -36,6 +36,18 @@ YAML::Node manifest(const Setup& s, const SimArgs& a) {
   return m;
 }
 
+// The scripted path, with build_path's "corridors[0]: reason" placed at that key of the path
+// file (or naming the default path when there is no --path).
+std::vector<sim::PathPoint> scripted_path(const sim::FieldTruth& truth, const Setup& s,
+                                          const SimArgs& a) {
+  try {
+    return sim::build_path(truth, s.path, s.robot);
+  } catch (const std::invalid_argument& e) {
+    if (!a.path) throw std::invalid_argument(std::string("default path (no --path): ") + e.what());
+    io::detail::yaml_fail_validation(a.path->string(), io::load_yaml_file(*a.path), "", e.what());
+  }
+}
+
 void run_sim(const SimArgs& a) {
   Setup s;
   s.field = load_field(a.field, &s.field_config);
@@ -44,7 +56,7 @@ void run_sim(const SimArgs& a) {
   if (a.seed) s.sensors.seed = *a.seed;
   s.path = load_path(a.path);
   const sim::FieldTruth truth(s.field);
-  auto path = sim::build_path(truth, s.path, s.robot);
+  const auto path = scripted_path(truth, s, a);
   sim::Simulator simulator(s.field, s.robot, s.sensors, path_start(path));
   sim::PathFollower driver(path);
   io::RecordingWriter writer(a.out, manifest(s, a), a.overwrite);

@@ -57,6 +57,11 @@ Simulator::Simulator(const Field& field, const RobotConfig& robot, const SimConf
       imu_(config.imu, config.seed * 7919 + 4),
       gnss_(config.gnss, config.seed * 7919 + 5) {
   config_.validate();
+  // Proprioception and truth sample n (n >= 1) is due at n / rate: the state at t = 0 is the
+  // start pose, not a measurement, and starting at n = 0 emitted an extra sample at the first
+  // step (t = dt), so the first interval was dt instead of 1 / rate (50 Hz encoders: 0.01,
+  // 0.02, 0.04, ...; 101 samples in 2 s). A sweep n still starts at n / rate (n >= 0).
+  n_encoders_ = n_imu_ = n_gnss_ = n_truth_ = 1;
   history_.emplace_back(0.0, pose3d(start));
   update_truth();
 }
