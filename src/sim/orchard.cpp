@@ -58,12 +58,8 @@ Field generate_orchard(const OrchardConfig& config, const TerrainConfig& terrain
                        std::uint64_t seed) {
   config.validate();
   std::mt19937_64 rng(seed);
-  Field field;
-  field.name = "orchard";
-  field.kind = FieldKind::orchard;
-  field.row_spacing = config.row_spacing;
-  field.headland_width = config.headland_width;
-  field.terrain = Terrain(terrain);
+  Field field = make_empty_field("orchard", FieldKind::orchard, config.row_spacing,
+                                 config.headland_width, terrain);
   field.rows = make_parallel_rows(config.rows, config.row_length, config.row_spacing,
                                   config.curvature_amplitude, config.curvature_wavelength,
                                   0.5 * config.crown_diameter,

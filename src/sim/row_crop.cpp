@@ -96,12 +96,8 @@ Field generate_row_crop(const RowCropConfig& config, const TerrainConfig& terrai
   config.validate();
   const CropPreset p = config.resolved();
   std::mt19937_64 rng(seed);
-  Field field;
-  field.name = std::string(core::enum_name(config.crop));
-  field.kind = FieldKind::row_crop;
-  field.row_spacing = p.row_spacing;
-  field.headland_width = config.headland_width;
-  field.terrain = Terrain(terrain);
+  Field field = make_empty_field(std::string(core::enum_name(config.crop)), FieldKind::row_crop,
+                                 p.row_spacing, config.headland_width, terrain);
   field.rows =
       make_parallel_rows(config.rows, config.row_length, p.row_spacing, config.curvature_amplitude,
                          config.curvature_wavelength, 0.5 * p.plant_width, p.plant_height, rng);

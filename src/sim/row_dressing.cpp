@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <numbers>
 
 #include "rownav/sim/plant_geometry.hpp"
@@ -42,6 +43,17 @@ void mark_gaps(std::vector<std::vector<bool>>& missing, int gap_count, int gap_l
 }
 
 }  // namespace
+
+Field make_empty_field(std::string name, FieldKind kind, double row_spacing,
+                       double headland_width, const TerrainConfig& terrain) {
+  Field field;
+  field.name = std::move(name);
+  field.kind = kind;
+  field.row_spacing = row_spacing;
+  field.headland_width = headland_width;
+  field.terrain = Terrain(terrain);
+  return field;
+}
 
 std::vector<Row> make_parallel_rows(int count, double length, double spacing, double amplitude,
                                     double wavelength, double half_width, double height,

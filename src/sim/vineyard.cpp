@@ -142,12 +142,8 @@ Field generate_vineyard(const VineyardConfig& config, const TerrainConfig& terra
                         std::uint64_t seed) {
   config.validate();
   std::mt19937_64 rng(seed);
-  Field field;
-  field.name = "vineyard";
-  field.kind = FieldKind::vineyard;
-  field.row_spacing = config.row_spacing;
-  field.headland_width = config.headland_width;
-  field.terrain = Terrain(terrain);
+  Field field = make_empty_field("vineyard", FieldKind::vineyard, config.row_spacing,
+                                 config.headland_width, terrain);
   field.rows = make_parallel_rows(config.rows, config.row_length, config.row_spacing,
                                   config.curvature_amplitude, config.curvature_wavelength,
                                   0.5 * config.canopy_width, config.canopy_top, rng);

@@ -2,12 +2,18 @@
 /// @file row_dressing.hpp Dresses row polylines with plants, posts, wires, weeds and ground:
 /// shared by the procedural generators and by imported layouts.
 #include <random>
+#include <string>
 #include <vector>
 
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/vineyard.hpp"
 
 namespace rownav::sim {
+
+/// An empty field of the given kind with its spacing, headland and terrain set (the part every
+/// procedural generator starts from).
+Field make_empty_field(std::string name, FieldKind kind, double row_spacing,
+                       double headland_width, const TerrainConfig& terrain);
 
 /// `count` parallel rows along +x from x = 0 to `length`, row k at y = k * spacing, all bent by
 /// the same lateral sine y += amplitude * sin(2 pi x / wavelength + phase) (phase from `rng`),
