@@ -14,7 +14,8 @@ namespace rownav::test {
 struct SyntheticRows {
   int rows = 4;                  // rows, placed symmetrically about the robot unless offset set
   double spacing = 1.8;          // [m]
-  double offset = 0.0;           // [m] lateral shift of the whole pattern (robot off-centre)
+  double offset = 0.0;           // [m] shift of the whole pattern across the rows (robot off-centre)
+                                 //     offset and spacing are perpendicular to the rows
   double heading = 0.0;          // [rad] row heading in the robot frame
   double x_min = 0.3, x_max = 8.0;  // [m] visible extent along the rows
   double canopy_half_width = 0.15;  // [m] points spread uniformly across the row

@@ -94,8 +94,9 @@ TEST(SyntheticRows, PointsLieOnTheirTruthLines) {
     for (const auto& l : scene.truth) best = std::min(best, std::abs(l.signed_distance(p.cast<double>())));
     EXPECT_LT(best, 1e-5);
   }
-  EXPECT_NEAR(scene.truth[1].y_at(0.0), 0.2 - 0.9, 1e-9);
-  EXPECT_NEAR(scene.truth[2].y_at(0.0), 0.2 + 0.9, 1e-9);
+  // offset and spacing are perpendicular to the rows: the intercept at x = 0 is y / cos(heading)
+  EXPECT_NEAR(scene.truth[1].y_at(0.0), (0.2 - 0.9) / std::cos(0.1), 1e-9);
+  EXPECT_NEAR(scene.truth[2].y_at(0.0), (0.2 + 0.9) / std::cos(0.1), 1e-9);
 }
 
 }  // namespace
