@@ -1,55 +1,95 @@
-// Minimal chain (crop, flat-ground height band); the full chain replaces it.
+// The preprocessing chain (see preprocessor.hpp for the order of the steps).
 #include "rownav/preprocess/preprocessor.hpp"
 
 namespace rownav::preprocess {
 
 void PreprocessConfig::validate() const {
-  core::check(x_min < x_max, "x_max", "must be > x_min");
-  core::check(y_min < y_max, "y_max", "must be > y_min");
-  core::check(min_height < max_height, "max_height", "must be > min_height");
-  core::check_non_negative(voxel_size, "voxel_size");
+  core::validate_nested(crop, "crop");
+  core::validate_nested(ground, "ground");
+  core::validate_nested(height, "height");
+  core::validate_nested(voxel, "voxel");
+  core::validate_nested(radius_outlier, "radius_outlier");
+  core::validate_nested(statistical_outlier, "statistical_outlier");
+  core::validate_nested(scan, "scan");
 }
 
-Preprocessor::Preprocessor(const PreprocessConfig& config) : config_(config) {
-  config_.validate();
+Preprocessor::Preprocessor(const PreprocessConfig& config)
+    : config_((config.validate(), config)),
+      crop_(config.crop),
+      ground_(config.ground),
+      voxel_(config.voxel),
+      radius_(config.radius_outlier),
+      statistical_(config.statistical_outlier),
+      scan_(config.scan) {
+  out_.cloud.frame_id = "base";
 }
 
 const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
   last_was_3d_ = true;
-  out_.cloud.points.clear();
   out_.cloud.stamp = cloud_base.stamp;
-  out_.cloud.frame_id = "base";
-  out_.points.clear();
+  out_.cloud.has_intensity = cloud_base.has_intensity;
+  out_.cloud.has_ring = cloud_base.has_ring;
+  out_.cloud.has_time = cloud_base.has_time;
   out_.dropped_invalid = 0;
+  cropped_.clear();
   for (const auto& p : cloud_base.points) {
     if (!p.finite()) {
       ++out_.dropped_invalid;
       continue;
     }
-    if (p.x < config_.x_min || p.x > config_.x_max || p.y < config_.y_min || p.y > config_.y_max ||
-        p.z < config_.min_height || p.z > config_.max_height)
-      continue;
-    out_.cloud.points.push_back(p);
-    out_.points.emplace_back(p.x, p.y);
+    if (crop_.contains(p.x, p.y, p.z)) cropped_.push_back(p);
   }
+  out_.ground_ok = ground_.estimate(cropped_);
+  height_band(cropped_, ground_, config_.height, band_);
+  voxel_.filter(band_, out_.cloud.points);
+  out_.points.clear();
+  if (config_.use_scan) {
+    out_.scan.stamp = cloud_base.stamp;
+    scan_.project(cropped_, &ground_, out_.scan);
+    ScanProjection::to_points(out_.scan, tmp2_);
+    voxel_.filter(tmp2_, out_.points);
+    filter_points_2d();
+    return out_;
+  }
+  if (config_.radius_outlier.enabled) {
+    radius_.filter(out_.cloud.points, tmp3_);
+    out_.cloud.points.swap(tmp3_);
+  }
+  if (config_.statistical_outlier.enabled) {
+    statistical_.filter(out_.cloud.points, tmp3_);
+    out_.cloud.points.swap(tmp3_);
+  }
+  for (const auto& p : out_.cloud.points) out_.points.emplace_back(p.x, p.y);
   return out_;
+}
+
+void Preprocessor::filter_points_2d() {
+  if (config_.radius_outlier.enabled) {
+    radius_.filter(out_.points, tmp2_);
+    out_.points.swap(tmp2_);
+  }
+  if (config_.statistical_outlier.enabled) {
+    statistical_.filter(out_.points, tmp2_);
+    out_.points.swap(tmp2_);
+  }
 }
 
 const Preprocessed& Preprocessor::run(std::span<const Eigen::Vector2f> points_base) {
   last_was_3d_ = false;
   out_.cloud.points.clear();
-  out_.points.clear();
+  out_.scan.ranges.clear();
   out_.dropped_invalid = 0;
+  out_.ground_ok = true;
+  tmp2_.clear();
   for (const auto& p : points_base) {
     if (!p.allFinite()) {
       ++out_.dropped_invalid;
       continue;
     }
-    if (p.x() < config_.x_min || p.x() > config_.x_max || p.y() < config_.y_min ||
-        p.y() > config_.y_max)
-      continue;
-    out_.points.push_back(p);
+    if (crop_.contains(p.x(), p.y())) tmp2_.push_back(p);
   }
+  voxel_.filter(tmp2_, out_.points);
+  filter_points_2d();
   return out_;
 }
 

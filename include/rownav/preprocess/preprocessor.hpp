@@ -2,35 +2,52 @@
 /// @file preprocessor.hpp The configurable chain that turns one LiDAR frame (base frame) into the
 /// keypoints a row detector consumes: crop, ground-relative height band, voxel grid, outlier
 /// removal and, for 3D clouds, the 2D points (projection or virtual scan).
+///
+/// 3D frame: drop NaN / Inf -> crop box + range -> ground estimate -> height band -> voxel grid
+/// (Nehme 2021 sec. 4) -> cloud. Then either points = (x, y) of the cloud, each point filtered by
+/// the enabled outlier filters in 3D; or (use_scan) a virtual scan of the cropped cloud
+/// (Bertoglio 2023 sec. II-A), whose returns go through a 2D voxel grid and the outlier filters.
+/// 2D frame: drop NaN / Inf -> crop (x, y, range) -> 2D voxel grid -> outlier filters.
 #include <Eigen/Core>
 #include <span>
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
+#include "rownav/core/scan2d.hpp"
 #include "rownav/detect/row_detector.hpp"
+#include "rownav/preprocess/crop_box.hpp"
+#include "rownav/preprocess/ground.hpp"
+#include "rownav/preprocess/height_band.hpp"
+#include "rownav/preprocess/radius_outlier.hpp"
+#include "rownav/preprocess/scan_projection.hpp"
+#include "rownav/preprocess/statistical_outlier.hpp"
+#include "rownav/preprocess/voxel_grid.hpp"
 
 namespace rownav::preprocess {
 
-/// Every step of the chain; each sub-config documents its own defaults.
+/// Every step of the chain; each sub-config documents its own defaults (a vineyard seen by a
+/// roof-mounted 3D LiDAR).
 struct PreprocessConfig {
-  double x_min = -1.0;       ///< [m] crop box, base frame (Nehme 2021 sec. 4 crops y to [-4, 4])
-  double x_max = 10.0;       ///< [m]
-  double y_min = -4.0;       ///< [m]
-  double y_max = 4.0;        ///< [m]
-  double min_height = 0.2;   ///< [m] keep points at least this far above the ground
-  double max_height = 3.0;   ///< [m] and at most this far
-  double voxel_size = 0.0;   ///< [m] voxel-grid edge; 0 = no downsampling (Nehme 2021: 0.15)
+  CropBoxConfig crop;                           ///< box + range crop (base frame)
+  GroundConfig ground;                          ///< ground estimate (3D only)
+  HeightBandConfig height;                      ///< band above the ground (3D only)
+  VoxelGridConfig voxel;                        ///< downsampling (3D, or 2D for 2D points)
+  RadiusOutlierConfig radius_outlier;           ///< off by default
+  StatisticalOutlierConfig statistical_outlier; ///< off by default
+  ScanProjectionConfig scan;                    ///< virtual scan (3D with use_scan)
+  bool use_scan = false;  ///< 3D: points from a virtual 2D scan instead of the cloud's (x, y)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
-    v("x_min", s.x_min);
-    v("x_max", s.x_max);
-    v("y_min", s.y_min);
-    v("y_max", s.y_max);
-    v("min_height", s.min_height);
-    v("max_height", s.max_height);
-    v("voxel_size", s.voxel_size);
+    v("crop", s.crop);
+    v("ground", s.ground);
+    v("height", s.height);
+    v("voxel", s.voxel);
+    v("radius_outlier", s.radius_outlier);
+    v("statistical_outlier", s.statistical_outlier);
+    v("scan", s.scan);
+    v("use_scan", s.use_scan);
   }
   void validate() const;
 };
@@ -40,6 +57,8 @@ struct Preprocessed {
   core::PointCloud cloud;               ///< kept 3D points (base frame), empty for 2D input
   std::vector<Eigen::Vector2f> points;  ///< kept points in the plane (x, y)
   std::size_t dropped_invalid = 0;      ///< NaN / Inf points removed
+  core::Scan2D scan;                    ///< the virtual scan (3D input with use_scan only)
+  bool ground_ok = true;                ///< false: ground estimation failed, flat_z was used
 };
 
 /// Runs the chain. Never throws on frame content; holds buffers, so one instance per thread.
@@ -53,11 +72,23 @@ class Preprocessor {
   /// The detector input for the last run (points, and the cloud for 3D frames).
   detect::DetectorInput input(double stamp) const;
   const PreprocessConfig& config() const { return config_; }
+  /// The ground estimate of the last 3D frame (height-above-ground function).
+  const GroundEstimator& ground() const { return ground_; }
 
  private:
+  void filter_points_2d();
+
   PreprocessConfig config_;
+  CropBox crop_;
+  GroundEstimator ground_;
+  VoxelGrid voxel_;
+  RadiusOutlier radius_;
+  StatisticalOutlier statistical_;
+  ScanProjection scan_;
   Preprocessed out_;
   bool last_was_3d_ = false;
+  std::vector<core::PointXYZIRT> cropped_, band_, tmp3_;
+  std::vector<Eigen::Vector2f> tmp2_;
 };
 
 }  // namespace rownav::preprocess

@@ -1,0 +1,80 @@
+// Voxel grid: integer keys, open-addressing hash, one accumulator per occupied voxel.
+#include "rownav/preprocess/voxel_grid.hpp"
+
+namespace rownav::preprocess {
+
+void VoxelGridConfig::validate() const {
+  core::check_non_negative(voxel_size, "voxel_size");
+  core::check_positive(min_points_per_voxel, "min_points_per_voxel");
+}
+
+VoxelGrid::VoxelGrid(const VoxelGridConfig& config) : config_(config) {
+  config_.validate();
+  inv_ = config_.voxel_size > 0.0 ? static_cast<float>(1.0 / config_.voxel_size) : 0.0f;
+}
+
+void VoxelGrid::filter(std::span<const core::PointXYZIRT> in,
+                       std::vector<core::PointXYZIRT>& out) {
+  out.clear();
+  if (inv_ == 0.0f) {
+    out.assign(in.begin(), in.end());
+    return;
+  }
+  hash_.reset(in.size());
+  acc_.clear();
+  for (std::uint32_t i = 0; i < in.size(); ++i) {
+    const auto& p = in[i];
+    int ix = 0, iy = 0, iz = 0;
+    if (!cell_index(p.x * inv_, ix) || !cell_index(p.y * inv_, iy) || !cell_index(p.z * inv_, iz))
+      continue;
+    bool fresh = false;
+    const auto a = hash_.find_or_insert(cell_key(ix, iy, iz),
+                                        static_cast<std::uint32_t>(acc_.size()), fresh);
+    if (fresh) {
+      acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
+      continue;
+    }
+    Acc& v = acc_[a];
+    v.x += p.x, v.y += p.y, v.z += p.z, v.intensity += p.intensity, v.time += p.time;
+    ++v.count;
+  }
+  const auto min_n = static_cast<std::uint32_t>(config_.min_points_per_voxel);
+  for (const auto& v : acc_) {
+    if (v.count < min_n) continue;
+    const double k = 1.0 / v.count;
+    core::PointXYZIRT q = in[v.first];
+    q.x = static_cast<float>(v.x * k), q.y = static_cast<float>(v.y * k);
+    q.z = static_cast<float>(v.z * k), q.intensity = static_cast<float>(v.intensity * k);
+    q.time = static_cast<float>(v.time * k);
+    out.push_back(q);
+  }
+}
+
+void VoxelGrid::filter(std::span<const Eigen::Vector2f> in, std::vector<Eigen::Vector2f>& out) {
+  out.clear();
+  if (inv_ == 0.0f) {
+    out.assign(in.begin(), in.end());
+    return;
+  }
+  hash_.reset(in.size());
+  acc_.clear();
+  for (std::uint32_t i = 0; i < in.size(); ++i) {
+    int ix = 0, iy = 0;
+    if (!cell_index(in[i].x() * inv_, ix) || !cell_index(in[i].y() * inv_, iy)) continue;
+    bool fresh = false;
+    const auto a =
+        hash_.find_or_insert(cell_key(ix, iy), static_cast<std::uint32_t>(acc_.size()), fresh);
+    if (fresh) {
+      acc_.push_back({in[i].x(), in[i].y(), 0.0, 0.0, 0.0, 1u, i});
+      continue;
+    }
+    acc_[a].x += in[i].x(), acc_[a].y += in[i].y();
+    ++acc_[a].count;
+  }
+  const auto min_n = static_cast<std::uint32_t>(config_.min_points_per_voxel);
+  for (const auto& v : acc_)
+    if (v.count >= min_n)
+      out.emplace_back(static_cast<float>(v.x / v.count), static_cast<float>(v.y / v.count));
+}
+
+}  // namespace rownav::preprocess
