@@ -49,7 +49,7 @@ void GroundConfig::validate() const {
   core::check_range(max_slope_deg, 0.0, 89.0, "max_slope_deg");
   core::check_positive(ransac_iterations, "ransac_iterations");
   core::check_positive(ransac_threshold, "ransac_threshold");
-  core::check(ransac_max_points >= 3, "ransac_max_points", "must be >= 3");
+  core::check(max_points >= 3, "max_points", "must be >= 3");
 }
 
 bool ransac_plane(std::span<const Eigen::Vector3f> pts, int iterations, double threshold,
@@ -109,10 +109,8 @@ bool GroundEstimator::estimate(std::span<const core::PointXYZIRT> points) {
   if (config_.method == GroundMethod::none) return true;
   if (config_.method == GroundMethod::lowest_cell) return estimate_cells(points);
   // RANSAC on a strided subset (deterministic, spread over the whole frame).
-  const std::size_t stride =
-      std::max<std::size_t>(1, points.size() / static_cast<std::size_t>(config_.ransac_max_points));
   sample_.clear();
-  for (std::size_t i = 0; i < points.size(); i += stride)
+  for (std::size_t i = 0; i < points.size(); i += stride(points.size()))
     sample_.emplace_back(points[i].x, points[i].y, points[i].z);
   GroundPlane p;
   if (!ransac_plane(sample_, config_.ransac_iterations, config_.ransac_threshold,
@@ -126,8 +124,10 @@ bool GroundEstimator::estimate(std::span<const core::PointXYZIRT> points) {
 
 bool GroundEstimator::estimate_cells(std::span<const core::PointXYZIRT> points) {
   if (points.size() < static_cast<std::size_t>(config_.min_cell_points)) return false;
+  const std::size_t step = stride(points.size()), m = (points.size() + step - 1) / step;
   float x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
-  for (const auto& p : points) {
+  for (std::size_t i = 0; i < points.size(); i += step) {
+    const auto& p = points[i];
     x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
     y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
   }
@@ -142,16 +142,17 @@ bool GroundEstimator::estimate_cells(std::span<const core::PointXYZIRT> points) 
   const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   // Counting sort of z by cell, then a per-cell quantile (nth_element).
   start_.assign(cells + 1, 0);
-  cell_of_.resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const int ix = std::min(nx_ - 1, static_cast<int>((points[i].x - x0) * inv_cell_));
-    const int iy = std::min(ny_ - 1, static_cast<int>((points[i].y - y0) * inv_cell_));
+  cell_of_.resize(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const auto& p = points[i * step];
+    const int ix = std::min(nx_ - 1, static_cast<int>((p.x - x0) * inv_cell_));
+    const int iy = std::min(ny_ - 1, static_cast<int>((p.y - y0) * inv_cell_));
     cell_of_[i] = static_cast<std::uint32_t>(iy * nx_ + ix);
     ++start_[cell_of_[i] + 1];
   }
   for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
-  zbuf_.resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) zbuf_[start_[cell_of_[i]]++] = points[i].z;
+  zbuf_.resize(m);
+  for (std::size_t i = 0; i < m; ++i) zbuf_[start_[cell_of_[i]]++] = points[i * step].z;
   for (std::size_t c = cells; c > 0; --c) start_[c] = start_[c - 1];  // cursors -> begins
   start_[0] = 0;
   cell_z_.assign(cells, kNaN);
@@ -195,7 +196,7 @@ void GroundEstimator::fill_holes() {
     for (int ix = 0; ix < nx_; ++ix) {
       const auto c = static_cast<std::size_t>(iy * nx_ + ix);
       if (!std::isnan(cell_z_[c])) {
-        filled_[c] = cell_z_[c];
+        filled_[c] = cell_z_[c] - centre_plane(ix, iy);
         continue;
       }
       float sum = 0.0f;  // mean residual of the valid 8-neighbours, on top of the plane
@@ -207,20 +208,8 @@ void GroundEstimator::fill_holes() {
           sum += z - centre_plane(jx, jy);
           ++n;
         }
-      filled_[c] = centre_plane(ix, iy) + (n > 0 ? sum / static_cast<float>(n) : 0.0f);
+      filled_[c] = n > 0 ? sum / static_cast<float>(n) : 0.0f;
     }
-}
-
-float GroundEstimator::grid_z(float x, float y) const {
-  // Bilinear between cell centres, clamped at the grid border.
-  const float fx = std::clamp((x - gx0_) * inv_cell_ - 0.5f, 0.0f, static_cast<float>(nx_ - 1));
-  const float fy = std::clamp((y - gy0_) * inv_cell_ - 0.5f, 0.0f, static_cast<float>(ny_ - 1));
-  const int ix = std::min(static_cast<int>(fx), nx_ - 1), iy = std::min(static_cast<int>(fy), ny_ - 1);
-  const int ix1 = std::min(ix + 1, nx_ - 1), iy1 = std::min(iy + 1, ny_ - 1);
-  const float tx = fx - static_cast<float>(ix), ty = fy - static_cast<float>(iy);
-  const auto at = [&](int i, int j) { return filled_[static_cast<std::size_t>(j * nx_ + i)]; };
-  return (1.0f - ty) * ((1.0f - tx) * at(ix, iy) + tx * at(ix1, iy)) +
-         ty * ((1.0f - tx) * at(ix, iy1) + tx * at(ix1, iy1));
 }
 
 }  // namespace rownav::preprocess

@@ -1,6 +1,8 @@
 // Voxel grid: integer keys, open-addressing hash, one accumulator per occupied voxel.
 #include "rownav/preprocess/voxel_grid.hpp"
 
+#include <algorithm>
+
 namespace rownav::preprocess {
 
 void VoxelGridConfig::validate() const {
@@ -20,32 +22,36 @@ void VoxelGrid::filter(std::span<const core::PointXYZIRT> in,
     out.assign(in.begin(), in.end());
     return;
   }
-  hash_.reset(in.size());
+  // Size the table for last frame's voxel count (it grows if needed) so that it stays in cache.
+  hash_.reset(std::min(in.size(), acc_.size() + acc_.size() / 2 + 64));
   acc_.clear();
+  std::uint64_t last_key = ~std::uint64_t{0};
+  std::uint32_t last = 0;
   for (std::uint32_t i = 0; i < in.size(); ++i) {
     const auto& p = in[i];
     int ix = 0, iy = 0, iz = 0;
     if (!cell_index(p.x * inv_, ix) || !cell_index(p.y * inv_, iy) || !cell_index(p.z * inv_, iz))
       continue;
-    bool fresh = false;
-    const auto a = hash_.find_or_insert(cell_key(ix, iy, iz),
-                                        static_cast<std::uint32_t>(acc_.size()), fresh);
-    if (fresh) {
-      acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
-      continue;
+    const std::uint64_t key = cell_key(ix, iy, iz);
+    if (key != last_key) {  // consecutive returns of a column often share a voxel
+      bool fresh = false;
+      last = hash_.find_or_insert(key, static_cast<std::uint32_t>(acc_.size()), fresh);
+      last_key = key;
+      if (fresh) {
+        acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
+        continue;
+      }
     }
-    Acc& v = acc_[a];
+    Acc& v = acc_[last];
     v.x += p.x, v.y += p.y, v.z += p.z, v.intensity += p.intensity, v.time += p.time;
     ++v.count;
   }
   const auto min_n = static_cast<std::uint32_t>(config_.min_points_per_voxel);
   for (const auto& v : acc_) {
     if (v.count < min_n) continue;
-    const double k = 1.0 / v.count;
+    const float k = 1.0f / static_cast<float>(v.count);
     core::PointXYZIRT q = in[v.first];
-    q.x = static_cast<float>(v.x * k), q.y = static_cast<float>(v.y * k);
-    q.z = static_cast<float>(v.z * k), q.intensity = static_cast<float>(v.intensity * k);
-    q.time = static_cast<float>(v.time * k);
+    q.x = v.x * k, q.y = v.y * k, q.z = v.z * k, q.intensity = v.intensity * k, q.time = v.time * k;
     out.push_back(q);
   }
 }
@@ -56,7 +62,7 @@ void VoxelGrid::filter(std::span<const Eigen::Vector2f> in, std::vector<Eigen::V
     out.assign(in.begin(), in.end());
     return;
   }
-  hash_.reset(in.size());
+  hash_.reset(std::min(in.size(), acc_.size() + acc_.size() / 2 + 64));
   acc_.clear();
   for (std::uint32_t i = 0; i < in.size(); ++i) {
     int ix = 0, iy = 0;
@@ -65,7 +71,7 @@ void VoxelGrid::filter(std::span<const Eigen::Vector2f> in, std::vector<Eigen::V
     const auto a =
         hash_.find_or_insert(cell_key(ix, iy), static_cast<std::uint32_t>(acc_.size()), fresh);
     if (fresh) {
-      acc_.push_back({in[i].x(), in[i].y(), 0.0, 0.0, 0.0, 1u, i});
+      acc_.push_back({in[i].x(), in[i].y(), 0.0f, 0.0f, 0.0f, 1u, i});
       continue;
     }
     acc_[a].x += in[i].x(), acc_[a].y += in[i].y();
@@ -74,7 +80,7 @@ void VoxelGrid::filter(std::span<const Eigen::Vector2f> in, std::vector<Eigen::V
   const auto min_n = static_cast<std::uint32_t>(config_.min_points_per_voxel);
   for (const auto& v : acc_)
     if (v.count >= min_n)
-      out.emplace_back(static_cast<float>(v.x / v.count), static_cast<float>(v.y / v.count));
+      out.emplace_back(v.x / static_cast<float>(v.count), v.y / static_cast<float>(v.count));
 }
 
 }  // namespace rownav::preprocess

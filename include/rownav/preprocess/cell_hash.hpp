@@ -37,23 +37,24 @@ class CellHash {
  public:
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
-  /// Empties the map and makes room for `expected` keys at load <= 0.5.
+  /// Empties the map, with room for `expected` keys at load <= 0.5 (it grows when needed; a
+  /// small table stays in cache, so pass the expected number of distinct keys, not of points).
   void reset(std::size_t expected) {
     std::size_t cap = 16;
     while (cap < 2 * expected) cap *= 2;
-    if (cap > keys_.size()) {
+    if (cap != keys_.size()) {
       keys_.assign(cap, kEmpty);
       values_.assign(cap, 0);
       used_.clear();
       used_.reserve(cap / 2);
+      set_mask();
     } else {
       for (const auto s : used_) keys_[s] = kEmpty;
       used_.clear();
     }
-    mask_ = keys_.size() - 1;
-    shift_ = 64;
-    for (std::size_t c = keys_.size(); c > 1; c >>= 1) --shift_;
   }
+  /// Number of keys stored.
+  std::size_t size() const { return used_.size(); }
 
   /// Value of `key`; inserts `value_if_new` when absent (`inserted` tells which).
   std::uint32_t find_or_insert(std::uint64_t key, std::uint32_t value_if_new, bool& inserted) {
@@ -64,6 +65,10 @@ class CellHash {
         return values_[s];
       }
       if (keys_[s] == kEmpty) {
+        if (2 * (used_.size() + 1) > keys_.size()) {
+          grow();
+          return find_or_insert(key, value_if_new, inserted);
+        }
         keys_[s] = key;
         values_[s] = value_if_new;
         used_.push_back(static_cast<std::uint32_t>(s));
@@ -86,6 +91,28 @@ class CellHash {
 
  private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  void set_mask() {
+    mask_ = keys_.size() - 1;
+    shift_ = 64;
+    for (std::size_t c = keys_.size(); c > 1; c >>= 1) --shift_;
+  }
+  /// Doubles the table and re-inserts every key (rare: only when `expected` was too small).
+  void grow() {
+    std::vector<std::uint64_t> old_keys(keys_.size() * 2, kEmpty);
+    std::vector<std::uint32_t> old_values(keys_.size() * 2, 0);
+    old_keys.swap(keys_);
+    old_values.swap(values_);
+    set_mask();
+    used_.clear();
+    for (std::size_t s = 0; s < old_keys.size(); ++s) {
+      if (old_keys[s] == kEmpty) continue;
+      std::size_t t = slot(old_keys[s]);
+      while (keys_[t] != kEmpty) t = (t + 1) & mask_;
+      keys_[t] = old_keys[s];
+      values_[t] = old_values[s];
+      used_.push_back(static_cast<std::uint32_t>(t));
+    }
+  }
   std::size_t slot(std::uint64_t key) const {
     return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_) & mask_;
   }

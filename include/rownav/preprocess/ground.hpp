@@ -4,6 +4,7 @@
 /// of z per cell, made robust by a plane fit over the cells, holes filled from neighbours or the
 /// plane) or a seeded RANSAC plane.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <random>
@@ -37,7 +38,7 @@ struct GroundConfig {
   double max_slope_deg = 20.0;      ///< [deg] steeper plane hypotheses are rejected
   int ransac_iterations = 100;      ///< [-] plane hypotheses (ransac_plane; lowest_cell on cells)
   double ransac_threshold = 0.08;   ///< [m] inlier distance to the plane (ransac_plane)
-  int ransac_max_points = 2048;     ///< [-] points sampled for RANSAC (strided subset)
+  int max_points = 8192;  ///< [-] the estimate uses a strided subset of at most this many points
   std::uint64_t seed = 1;           ///< RANSAC seed, re-applied every frame (same frame, same plane)
 
   template <class S, class V>
@@ -51,7 +52,7 @@ struct GroundConfig {
     v("max_slope_deg", s.max_slope_deg);
     v("ransac_iterations", s.ransac_iterations);
     v("ransac_threshold", s.ransac_threshold);
-    v("ransac_max_points", s.ransac_max_points);
+    v("max_points", s.max_points);
     v("seed", s.seed);
   }
   void validate() const;
@@ -87,10 +88,19 @@ class GroundEstimator {
 
  private:
   float plane_z(float x, float y) const { return pc_[0] + pc_[1] * x + pc_[2] * y; }
-  float grid_z(float x, float y) const;
+  /// The plane plus the residual of the nearest cell (exact on a plane, no bilinear cost).
+  float grid_z(float x, float y) const {
+    const int ix = std::clamp(static_cast<int>((x - gx0_) * inv_cell_), 0, nx_ - 1);
+    const int iy = std::clamp(static_cast<int>((y - gy0_) * inv_cell_), 0, ny_ - 1);
+    return plane_z(x, y) + filled_[static_cast<std::size_t>(iy * nx_ + ix)];
+  }
   bool estimate_cells(std::span<const core::PointXYZIRT> points);
   void fill_holes();
   void set_flat();
+  std::size_t stride(std::size_t n) const {
+    const auto m = static_cast<std::size_t>(config_.max_points);
+    return std::max<std::size_t>(1, (n + m - 1) / m);
+  }
 
   GroundConfig config_;
   GroundMethod method_ = GroundMethod::none;  // effective method of the last estimate
@@ -100,7 +110,7 @@ class GroundEstimator {
   // lowest_cell grid: origin, cell size, dimensions, per-cell ground z (NaN = hole)
   float gx0_ = 0.0f, gy0_ = 0.0f, cell_ = 1.0f, inv_cell_ = 1.0f;
   int nx_ = 0, ny_ = 0;
-  std::vector<float> cell_z_, filled_, zbuf_;
+  std::vector<float> cell_z_, filled_, zbuf_;  // filled_: per-cell residual above the plane
   std::vector<std::uint32_t> cell_of_, start_;
   std::vector<Eigen::Vector3f> sample_;
 };

@@ -39,8 +39,8 @@ class VoxelGrid {
   const VoxelGridConfig& config() const { return config_; }
 
  private:
-  struct Acc {
-    double x, y, z, intensity, time;
+  struct Acc {  // float sums: < 1e-4 m error for the few hundred points of a voxel
+    float x, y, z, intensity, time;
     std::uint32_t count, first;
   };
   VoxelGridConfig config_;
