@@ -122,9 +122,7 @@ bool GroundEstimator::estimate(std::span<const core::PointXYZIRT> points) {
   return true;
 }
 
-bool GroundEstimator::estimate_cells(std::span<const core::PointXYZIRT> points) {
-  if (points.size() < static_cast<std::size_t>(config_.min_cell_points)) return false;
-  const std::size_t step = stride(points.size()), m = (points.size() + step - 1) / step;
+void GroundEstimator::setup_grid(std::span<const core::PointXYZIRT> points, std::size_t step) {
   float x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
   for (std::size_t i = 0; i < points.size(); i += step) {
     const auto& p = points[i];
@@ -139,14 +137,20 @@ bool GroundEstimator::estimate_cells(std::span<const core::PointXYZIRT> points) 
     cell_ *= 2.0f;
   }
   gx0_ = x0, gy0_ = y0, inv_cell_ = 1.0f / cell_;
+}
+
+bool GroundEstimator::estimate_cells(std::span<const core::PointXYZIRT> points) {
+  if (points.size() < static_cast<std::size_t>(config_.min_cell_points)) return false;
+  const std::size_t step = stride(points.size()), m = (points.size() + step - 1) / step;
+  setup_grid(points, step);
   const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   // Counting sort of z by cell, then a per-cell quantile (nth_element).
   start_.assign(cells + 1, 0);
   cell_of_.resize(m);
   for (std::size_t i = 0; i < m; ++i) {
     const auto& p = points[i * step];
-    const int ix = std::min(nx_ - 1, static_cast<int>((p.x - x0) * inv_cell_));
-    const int iy = std::min(ny_ - 1, static_cast<int>((p.y - y0) * inv_cell_));
+    const int ix = std::min(nx_ - 1, static_cast<int>((p.x - gx0_) * inv_cell_));
+    const int iy = std::min(ny_ - 1, static_cast<int>((p.y - gy0_) * inv_cell_));
     cell_of_[i] = static_cast<std::uint32_t>(iy * nx_ + ix);
     ++start_[cell_of_[i] + 1];
   }

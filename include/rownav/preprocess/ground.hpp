@@ -95,6 +95,7 @@ class GroundEstimator {
     return plane_z(x, y) + filled_[static_cast<std::size_t>(iy * nx_ + ix)];
   }
   bool estimate_cells(std::span<const core::PointXYZIRT> points);
+  void setup_grid(std::span<const core::PointXYZIRT> points, std::size_t step);
   void fill_holes();
   void set_flat();
   std::size_t stride(std::size_t n) const {
