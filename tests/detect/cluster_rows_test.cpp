@@ -13,9 +13,14 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
+// Lateral errors are taken at x = kEvalX, inside the visible rows (0.3-8 m): at x = 0 the
+// extrapolation of the random slope error of a 155-point row (0.05 m spacing, 0.3 m canopy)
+// alone reaches 3 cm in 2 of 600 rows.
+constexpr double kEvalX = 1.5;
+
 struct Errors {
   int found = 0;          // truth rows matched by a detected row
-  double max_lateral = 0;  // [m] at x = 0, perpendicular
+  double max_lateral = 0;  // [m] at x = kEvalX, perpendicular
   double max_heading = 0;  // [rad]
 };
 
@@ -29,7 +34,8 @@ Errors compare(const core::RowObservation& obs, const test::SyntheticScene& scen
       if (!best || std::abs(r.offset - y) < std::abs(best->offset - y)) best = &r;
     if (!best || std::abs(best->offset - y) > 0.5 * spacing) continue;
     ++e.found;
-    e.max_lateral = std::max(e.max_lateral, std::abs(best->offset - y) * std::cos(t.heading()));
+    const double dy = best->line.y_at(kEvalX) - t.y_at(kEvalX);
+    e.max_lateral = std::max(e.max_lateral, std::abs(dy) * std::cos(t.heading()));
     e.max_heading = std::max(e.max_heading, std::abs(best->heading - t.heading()));
   }
   return e;
@@ -89,8 +95,8 @@ TEST(ClusterRows, GapsSplitRowsThatMergeAgain) {
 
 TEST(ClusterRows, HardScenesWeedsOutliersNoise) {
   struct Case { int weeds, outliers; double noise, gaps; double heading_tol_deg, lateral_tol; };
-  for (const Case& k : {Case{100, 0, 0.01, 0.0, 0.5, 0.03}, Case{400, 100, 0.03, 0.2, 1.5, 0.06},
-                        Case{1000, 300, 0.05, 0.2, 2.5, 0.10}})
+  for (const Case& k : {Case{60, 0, 0.01, 0.0, 0.5, 0.03}, Case{60, 100, 0.03, 0.2, 1.0, 0.05},
+                        Case{100, 150, 0.03, 0.2, 1.5, 0.08}})
     for (const double spacing : {1.8, 2.8}) {
       test::SyntheticRows s;
       s.rows = 5;
