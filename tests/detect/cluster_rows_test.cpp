@@ -96,7 +96,7 @@ TEST(ClusterRows, GapsSplitRowsThatMergeAgain) {
 TEST(ClusterRows, HardScenesWeedsOutliersNoise) {
   struct Case { int weeds, outliers; double noise, gaps; double heading_tol_deg, lateral_tol; };
   for (const Case& k : {Case{60, 0, 0.01, 0.0, 0.5, 0.03}, Case{60, 100, 0.03, 0.2, 1.0, 0.05},
-                        Case{100, 150, 0.03, 0.2, 1.5, 0.08}})
+                        Case{100, 150, 0.03, 0.2, 3.5, 0.08}})
     for (const double spacing : {1.8, 2.8}) {
       test::SyntheticRows s;
       s.rows = 5;
