@@ -7,6 +7,8 @@
 #include <random>
 
 #include "../common/synthetic_rows.hpp"
+#include "corn_rows_eval.hpp"
+#include "rownav/detect/line_fit.hpp"
 
 namespace rownav::detect {
 namespace {
@@ -170,6 +172,33 @@ TEST(ClusterRows, DeterministicAndSearchIndependent) {
   Dbscan g, t;
   EXPECT_EQ(g.run(scene.points, 0.3, 4, NeighbourSearch::grid),
             t.run(scene.points, 0.3, 4, NeighbourSearch::kd_tree));
+}
+
+// Real data, one row-crop config (ClusterRowsConfig::row_crop()) over all 1630 frames.
+TEST(ClusterRows, CornRows2d) {
+  ClusterRowsDetector d(ClusterRowsConfig::row_crop());
+  const auto s = test::evaluate_corn([&](const DetectorInput& in) { return d.detect(in); },
+                                     "cluster_rows");
+  const auto base = test::evaluate_corn(
+      [](const DetectorInput&) {  // trivial baseline: rows at +-0.35 m straight ahead
+        core::RowObservation o;
+        for (const double y : {-0.35, 0.35}) {
+          const core::Line2 l(Eigen::Vector2d(0.0, y), Eigen::Vector2d::UnitX());
+          o.rows.push_back(make_row_line(l, {}));
+        }
+        finalize_observation(o);
+        return o;
+      },
+      "baseline");
+  ASSERT_EQ(s.frames, 1630);
+  // Measured: 45 % of the lines (trivial baseline: 94 % within 0.35 m), median 8.9 cm at 0.5 m
+  // (baseline 10.2), heading 7.7 deg (8.3); corridor in 345 frames, centre 4.0 cm (6.3), heading
+  // 2.3 deg (8.9). The method misses lines but the ones it reports are better than the baseline.
+  EXPECT_GT(s.detected, 0.4 * s.lines);
+  EXPECT_LT(test::median(s.centre), test::median(base.centre));
+  EXPECT_LT(test::median(s.centre_heading), 0.5 * test::median(base.centre_heading));
+  EXPECT_LT(test::median(s.lat05), test::median(base.lat05));
+  EXPECT_LT(test::median(s.heading), test::median(base.heading));
 }
 
 TEST(ClusterRows, ConfigValidation) {

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "../common/synthetic_rows.hpp"
+#include "corn_rows_eval.hpp"
 
 namespace rownav::detect {
 namespace {
@@ -127,6 +128,19 @@ TEST(ConeRect, Deterministic) {
   ASSERT_TRUE(oa.corridor && ob.corridor);
   EXPECT_EQ(oa.corridor->offset, ob.corridor->offset);
   EXPECT_EQ(oa.corridor->heading, ob.corridor->heading);
+}
+
+// Real data with the documented row-crop config over all 1630 frames.
+TEST(ConeRect, CornRows2d) {
+  ConeRectDetector d(row_crop_config());
+  const auto s = test::evaluate_corn([&](const DetectorInput& in) { return d.detect(in); },
+                                     "cone_rect");
+  ASSERT_EQ(s.frames, 1630);
+  // Measured: corridor in 570 frames (35 %), centre median / p90 4.0 / 11.8 cm, heading 2.6 /
+  // 8.2 deg; the trivial baseline (rows at +-0.35 m ahead) gives 6.3 cm and 8.9 deg.
+  EXPECT_GT(s.corridors, 500);
+  EXPECT_LT(test::median(s.centre), 0.05);
+  EXPECT_LT(test::median(s.centre_heading), 3.5 * M_PI / 180);
 }
 
 TEST(ConeRect, ConfigValidation) {
