@@ -1,0 +1,138 @@
+// Bertoglio 2023 (003_25dc0df51a1e5faf.txt) sec. II-B, after Kamaro's FRE 2021 row crawler:
+// find_cone grows the two sides of a cone centred on the robot heading until N points fall
+// inside; the cone centre line gives the heading; two rectangles grown sideways until N points
+// fall inside give the distances to the rows. Growing until the N-th point is reached equals
+// taking the N-th smallest angle (distance), so no step size is needed.
+#include "rownav/detect/cone_rect.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+namespace rownav::detect {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// N-th smallest value of buf (1-based), nullopt when fewer than n values.
+std::optional<double> nth_smallest(std::vector<float>& buf, int n) {
+  if (n < 1 || static_cast<int>(buf.size()) < n) return std::nullopt;
+  const auto it = buf.begin() + (n - 1);
+  std::nth_element(buf.begin(), it, buf.end());
+  return *it;
+}
+
+struct Sides {
+  std::optional<double> left, right;  // [rad] cone side angles or [m] rectangle distances
+};
+
+// Bertoglio 2023: each cone side moves outwards from the heading until N points are inside
+// its half of the cone (radius side_length).
+Sides grow_cone(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c,
+                std::vector<float>& buf) {
+  Sides s;
+  const double max_a = c.max_cone_half_angle_deg * kDeg, l2 = c.side_length * c.side_length;
+  for (const int sign : {1, -1}) {
+    buf.clear();
+    for (const auto& p : pts) {
+      if (!p.allFinite() || p.x() <= 0.0f || p.squaredNorm() > l2) continue;
+      const double a = sign * std::atan2(p.y(), p.x());
+      if (a >= 0.0 && a <= max_a) buf.push_back(static_cast<float>(a));
+    }
+    const auto a = nth_smallest(buf, c.cone_points);
+    (sign > 0 ? s.left : s.right) = a ? std::optional<double>(sign * *a) : std::nullopt;
+  }
+  return s;
+}
+
+// Bertoglio 2023: rectangles beside the robot grow outwards until N points are inside; in the
+// frame rotated by `heading` (0 = the robot's axes, as in the paper).
+Sides grow_rectangles(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c,
+                      double heading, std::vector<float>& buf) {
+  Sides s;
+  const float ch = static_cast<float>(std::cos(heading)), sh = static_cast<float>(std::sin(heading));
+  for (const int sign : {1, -1}) {
+    buf.clear();
+    for (const auto& p : pts) {
+      if (!p.allFinite()) continue;
+      const float x = ch * p.x() + sh * p.y(), y = sign * (-sh * p.x() + ch * p.y());
+      if (x >= c.rect_x_min && x <= c.rect_x_max && y > 0.0f && y <= c.max_rect_width)
+        buf.push_back(y);
+    }
+    (sign > 0 ? s.left : s.right) = nth_smallest(buf, c.rect_points);
+  }
+  return s;
+}
+
+// Cone centre minus the part due to an off-centre robot (see ConeRectConfig::compensate_offset).
+double corrected_heading(double centre, const Sides& d, const ConeRectConfig& c) {
+  if (!c.compensate_offset || !d.left || !d.right) return centre;
+  auto a = [&](double dist) { return std::asin(std::min(1.0, dist / c.side_length)); };
+  return centre - 0.5 * (a(*d.left) - a(*d.right));
+}
+
+core::RowLine side_line(double heading, double signed_dist, const ConeRectConfig& c) {
+  const Eigen::Vector2d dir(std::cos(heading), std::sin(heading));
+  core::RowLine r;
+  r.line = core::Line2(signed_dist * Eigen::Vector2d(-dir.y(), dir.x()), dir);
+  r.heading = heading;
+  r.offset = r.line.y_at(0.0);
+  r.x_min = c.rect_x_min;
+  r.x_max = c.rect_x_max;
+  r.support = c.rect_points;
+  return r;
+}
+
+}  // namespace
+
+void ConeRectConfig::validate() const {
+  core::check_positive(side_length, "side_length");
+  core::check(cone_points >= 1, "cone_points", "must be >= 1");
+  core::check(max_cone_half_angle_deg > 0.0 && max_cone_half_angle_deg < 90.0,
+              "max_cone_half_angle_deg", "must be in (0, 90)");
+  core::check(rect_x_min < rect_x_max, "rect_x_max", "must be > rect_x_min");
+  core::check(rect_points >= 1, "rect_points", "must be >= 1");
+  core::check_positive(max_rect_width, "max_rect_width");
+  core::check_non_negative(min_width, "min_width");
+}
+
+ConeRectDetector::ConeRectDetector(const ConeRectConfig& config) : config_(config) {
+  config_.validate();
+}
+
+core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
+  const auto& c = config_;
+  core::RowObservation obs;
+  obs.stamp = input.stamp;
+  const Sides cone = grow_cone(input.points, c, buf_);
+  const bool has_cone = cone.left && cone.right;
+  double heading = has_cone ? 0.5 * (*cone.left + *cone.right) : 0.0;
+  Sides d = grow_rectangles(input.points, c, c.align_rectangles ? heading : 0.0, buf_);
+  if (has_cone && c.compensate_offset && d.left && d.right) {  // second pass, corrected heading
+    heading = corrected_heading(0.5 * (*cone.left + *cone.right), d, c);
+    if (c.align_rectangles) d = grow_rectangles(input.points, c, heading, buf_);
+  }
+  if (d.left && d.right && *d.left + *d.right < c.min_width) d = {};  // clutter, not a corridor
+  if (d.right) obs.rows.push_back(side_line(heading, -*d.right, c));
+  if (d.left) obs.rows.push_back(side_line(heading, *d.left, c));
+  if (d.right) obs.right = 0;
+  if (d.left) obs.left = d.right ? 1 : 0;
+  obs.heading = heading;
+  obs.confidence = (d.left ? 0.5 : 0.0) + (d.right ? 0.5 : 0.0);
+  if (!has_cone) obs.confidence *= 0.5;
+  if (d.left && d.right) {
+    const double half = 0.5 * (*d.left - *d.right);
+    core::CorridorObservation corr;
+    corr.heading = heading;
+    corr.offset = half / std::cos(heading);  // y at x = 0 of the centre line
+    corr.width = *d.left + *d.right;
+    obs.corridor = corr;
+  }
+  obs.status = obs.rows.empty()                ? core::DetectionStatus::no_rows
+               : (obs.corridor && has_cone)    ? core::DetectionStatus::ok
+                                               : core::DetectionStatus::degraded;
+  return obs;
+}
+
+}  // namespace rownav::detect
