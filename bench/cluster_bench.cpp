@@ -70,7 +70,7 @@ const Scene& scene() {
 
 preprocess::PreprocessConfig pre_config() {
   preprocess::PreprocessConfig c;
-  c.voxel_size = 0.15;
+  c.voxel.voxel_size = 0.15;
   return c;
 }
 

@@ -64,8 +64,9 @@ CornStats evaluate_corn(Detect&& detect, const char* name) {
   const auto clouds = io::read_points_csv(corn_dir() / "scans.csv");
   const auto labels = io::read_row_labels(corn_dir() / "labels.csv");
   preprocess::PreprocessConfig pc;
-  pc.x_min = 0.0;  // the one row-crop crop box
-  pc.x_max = 2.5;
+  pc.crop.x_min = 0.0;  // the one row-crop crop box
+  pc.voxel.voxel_size = 0.0;  // 2D scans are already sparse
+  pc.crop.x_max = 2.5;
   preprocess::Preprocessor pre(pc);
   std::vector<Eigen::Vector2f> pts;
   for (const auto& cloud : clouds) {
