@@ -27,6 +27,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 struct CorridorError {
   bool found = false;  // both corridor rows detected
   double heading_deg = 1e9, left = 1e9, right = 1e9;
+  double centre = 1e9;  // corridor centre (mean of the two rows) at x = 0
   double worst() const { return std::max(left, right); }
 };
 
@@ -46,6 +47,9 @@ inline CorridorError corridor_error(const core::RowObservation& obs,
   e.found = true;
   e.left = std::abs(obs.rows[std::size_t(obs.left)].line.y_at(0.0) - tl->y_at(0.0));
   e.right = std::abs(obs.rows[std::size_t(obs.right)].line.y_at(0.0) - tr->y_at(0.0));
+  e.centre = std::abs(obs.rows[std::size_t(obs.left)].line.y_at(0.0) +
+                      obs.rows[std::size_t(obs.right)].line.y_at(0.0) - tl->y_at(0.0) -
+                      tr->y_at(0.0)) / 2.0;
   return e;
 }
 

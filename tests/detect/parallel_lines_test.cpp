@@ -42,7 +42,8 @@ TEST(ParallelLines, SyntheticHard) {
     for (int h = -15; h <= 15; h += 10) {
       test::SyntheticRows s;
       s.rows = 5, s.spacing = spacing, s.heading = h * kDeg, s.offset = 0.25 * spacing;
-      s.noise = 0.03, s.gap_probability = 0.3, s.weeds = 600, s.outliers = 300;
+      s.noise = 0.03, s.gap_probability = 0.3, s.outliers = 300;
+      s.weeds = static_cast<int>(100 * spacing);  // same weed density per m2 for every spacing
       s.seed = std::uint64_t(7 + h);
       const auto scene = test::make_rows(s);
       const auto e = test::corridor_error(det.detect(test::input_of(scene)), scene.truth);
@@ -126,11 +127,15 @@ TEST(ParallelLines, SimulatedVineyardFrameAndTrunks) {
     pre.run(f.cloud_base);
     const auto obs = det.detect(pre.input(0.0));
     const auto e = test::corridor_error(obs, test::truth_lines(f.truth));
-    std::printf("[parallel_lines OS1-16 sim, offset %+.0f deg] heading error %.3f deg, lateral "
-                "left %.1f mm right %.1f mm\n", dh, e.heading_deg, 1000 * e.left, 1000 * e.right);
+    std::printf("[parallel_lines OS1-16 sim, offset %+.0f deg] heading error %.3f deg, corridor centre "
+                "%.1f mm, rows left %.1f mm right %.1f mm\n", dh, e.heading_deg, 1000 * e.centre,
+                1000 * e.left, 1000 * e.right);
     ASSERT_TRUE(e.found);
-    EXPECT_LT(e.heading_deg, 1.0);
-    EXPECT_LT(e.worst(), 0.08);
+    EXPECT_LT(e.heading_deg, 0.5);
+    EXPECT_LT(e.centre, 0.03);
+    // The LiDAR sees the corridor side of each 0.5 m canopy: every row comes out ~8 cm closer to
+    // the robot than its centre line (the paper's "centre of the perceived canopy").
+    EXPECT_LT(e.worst(), 0.12);
     // Trunks: each found centre is near a vine or post of the field (base frame).
     const core::Pose2 T = f.truth.T_world_base;
     for (int side = 0; side < 2; ++side) {

@@ -37,12 +37,20 @@ struct HoughSkewConfig {
   int min_segment_bins = 2;        ///< [-] narrower segments are noise (rownav)
   int min_segment_points = 8;      ///< [-] fewer votes in a segment: rejected (rownav)
   double max_segment_width = 1.5;  ///< [m] wider segments are not one row (walls, merged rows)
+  bool split_segments = true;      ///< rownav: cut segments at deep valleys (rows joined by weeds)
+  double valley_ratio = 0.5;       ///< [-] a valley below this x the lower neighbouring peak cuts
+  /// [-] segments with fewer votes than this x the strongest segment's are dropped (weed strips
+  /// between rows; far, sparsely hit rows) (rownav)
+  double min_relative_support = 0.2;
+  /// [-] a segment's mean votes per bin must exceed this x the lower quartile of the occupied
+  /// bins (the background between rows); a uniform open field gives ~1.3 (rownav)
+  double min_contrast = 2.5;
   bool refine_rows = true;         ///< rownav: joint TLS fit of parallel lines to the bands
   /// [m] half width of the band of points around a segment's position used by the fit; also
   /// capped at 0.45 x the distance to the neighbouring segment (keeps weeds out).
   double band_half_width = 0.35;
   int refine_iterations = 3;       ///< [-] re-banding + fit passes
-  double trim_sigma = 2.5;         ///< [-] drop points beyond this many rms from their line, refit
+  double trim_sigma = 2.0;         ///< [-] drop points beyond this many rms from their line, refit
   bool common_heading = true;      ///< true: rows share one direction; false: one TLS line each
   double min_row_length = 0.5;     ///< [m] rows whose support spans less along x are dropped
 
@@ -76,6 +84,10 @@ struct HoughSkewConfig {
     v("min_segment_bins", s.min_segment_bins);
     v("min_segment_points", s.min_segment_points);
     v("max_segment_width", s.max_segment_width);
+    v("split_segments", s.split_segments);
+    v("valley_ratio", s.valley_ratio);
+    v("min_relative_support", s.min_relative_support);
+    v("min_contrast", s.min_contrast);
     v("refine_rows", s.refine_rows);
     v("band_half_width", s.band_half_width);
     v("refine_iterations", s.refine_iterations);
@@ -109,6 +121,12 @@ class HoughSkewDetector : public RowDetector {
   double best_gamma(double& variance);
   /// Mean-threshold segmentation of hist_ (Nehme 2021 sec. 3.2.3) with rownav rejections.
   void segment();
+  /// Cuts the run [from, to) of bins at deep valleys, recursively (rownav).
+  void split(int from, int to, int depth);
+  /// Adds the bins [from, to) as a segment when it passes the support / width checks.
+  void accept(int from, int to);
+  /// Lower quartile of hist_ between its first and last occupied bins.
+  double lower_quartile();
   /// Joint parallel-line fit of the points around each segment (rownav); fills obs rows.
   void fit_rows(double gamma, core::RowObservation& obs);
 
@@ -116,8 +134,9 @@ class HoughSkewDetector : public RowDetector {
   std::vector<double> coarse_gamma_, coarse_sin_, coarse_cos_;  // precomputed tables
   // Per-frame buffers, reused.
   std::vector<Eigen::Vector2f> pts_;
-  std::vector<int> hist_;
+  std::vector<int> hist_, quartile_;
   std::vector<Segment> segments_;
+  double threshold_ = 0.0;  // column mean of the current histogram
   std::vector<std::vector<Eigen::Vector2f>> bands_;
 };
 

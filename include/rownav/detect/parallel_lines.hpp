@@ -20,10 +20,10 @@ namespace rownav::detect {
 
 /// Parameters of ParallelLinesDetector.
 struct ParallelLinesConfig {
-  int iterations = 200;           ///< [-] RANSAC hypotheses (rownav; the paper gives none)
+  int iterations = 500;           ///< [-] RANSAC hypotheses (rownav; the paper gives none)
   double inlier_distance = 0.2;   ///< [m] perpendicular distance to a line for an inlier
   std::uint64_t seed = 1;         ///< RANSAC random seed (same seed, same answer)
-  int score_points = 600;         ///< [-] hypotheses are scored on at most this many points
+  int score_points = 400;         ///< [-] hypotheses are scored on at most this many points
   double min_sample_dx = 1.0;     ///< [m] two points defining the slope are this far apart in x
   double max_heading_deg = 30.0;  ///< [deg] steeper hypotheses are rejected
   double min_width = 0.4;         ///< [m] smallest corridor width b_l - b_r (at x = 0)
