@@ -58,6 +58,7 @@ void HoughSkewConfig::validate() const {
   core::check_range(refine_iterations, 1, 100, "refine_iterations");
   core::check_positive(trim_sigma, "trim_sigma");
   core::check_non_negative(min_row_length, "min_row_length");
+  core::check_positive(max_row_rms, "max_row_rms");
 }
 
 HoughSkewDetector::HoughSkewDetector(const HoughSkewConfig& config) : config_(config) {
@@ -305,7 +306,7 @@ void HoughSkewDetector::fit_rows(double gamma, core::RowObservation& obs) {
       line = *tls;
     }
     auto row = make_row_line(line, b);
-    if (row.x_max - row.x_min < config_.min_row_length) continue;
+    if (row.x_max - row.x_min < config_.min_row_length || row.rms > config_.max_row_rms) continue;
     obs.rows.push_back(row);
   }
 }

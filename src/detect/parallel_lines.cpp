@@ -1,6 +1,7 @@
 #include "rownav/detect/parallel_lines.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 #include <cmath>
@@ -40,7 +41,7 @@ Counts classify(const Pts& pts, double a, double bl, double br, double d) {
 /// Nearest (to the robot) cluster centre of the points; false when no cluster is big enough.
 /// Clusters: single linkage at `radius`, found with a sweep along x.
 bool nearest_cluster(std::vector<Eigen::Vector2f>& pts, double radius, int min_points,
-                     std::vector<int>& parent, Eigen::Vector2d& centre) {
+                     double max_size, std::vector<int>& parent, Eigen::Vector2d& centre) {
   std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return a.x() < b.x(); });
   parent.resize(pts.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -53,15 +54,24 @@ bool nearest_cluster(std::vector<Eigen::Vector2f>& pts, double radius, int min_p
     for (std::size_t j = i + 1; j < pts.size() && pts[j].x() - pts[i].x() <= radius; ++j)
       if ((pts[j] - pts[i]).squaredNorm() <= r2)
         parent[static_cast<std::size_t>(root(static_cast<int>(j)))] = root(static_cast<int>(i));
-  std::vector<Eigen::Vector3d> sums(pts.size(), Eigen::Vector3d::Zero());  // x, y, count
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    sums[static_cast<std::size_t>(root(static_cast<int>(i)))] +=
-        Eigen::Vector3d(pts[i].x(), pts[i].y(), 1.0);
+  struct Cluster {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    int n = 0;
+    Eigen::AlignedBox2f box;
+  };
+  std::vector<Cluster> clusters(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    auto& c = clusters[static_cast<std::size_t>(root(static_cast<int>(i)))];
+    c.sum += pts[i].cast<double>();
+    ++c.n;
+    c.box.extend(pts[i]);
+  }
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& s : sums) {
-    if (s.z() < min_points) continue;
-    const Eigen::Vector2d c = s.head<2>() / s.z();
-    if (c.norm() < best) best = c.norm(), centre = c;
+  for (const auto& c : clusters) {
+    // A trunk is compact; long clusters are wires, low canopy or ground.
+    if (c.n < min_points || c.box.diagonal().norm() > max_size) continue;
+    const Eigen::Vector2d m = c.sum / c.n;
+    if (m.norm() < best) best = m.norm(), centre = m;
   }
   return std::isfinite(best);
 }
@@ -83,6 +93,7 @@ void ParallelLinesConfig::validate() const {
   core::check(trunk_z_max > trunk_z_min, "trunk_z_max", "must be > trunk_z_min");
   core::check_positive(trunk_cluster_radius, "trunk_cluster_radius");
   core::check_positive(trunk_min_points, "trunk_min_points");
+  core::check_positive(trunk_max_size, "trunk_max_size");
   core::check_positive(trunk_max_line_distance, "trunk_max_line_distance");
   core::check_positive(trunk_max_range, "trunk_max_range");
 }
@@ -165,8 +176,8 @@ void ParallelLinesDetector::find_trunks(const core::PointCloud& cloud, const Mod
         band_.emplace_back(p.x, p.y);
     }
     auto& t = trunks_[static_cast<std::size_t>(side)];
-    t.found = nearest_cluster(band_, config_.trunk_cluster_radius, config_.trunk_min_points, label_,
-                              t.centre);
+    t.found = nearest_cluster(band_, config_.trunk_cluster_radius, config_.trunk_min_points,
+                              config_.trunk_max_size, label_, t.centre);
   }
 }
 

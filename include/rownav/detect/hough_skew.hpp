@@ -53,6 +53,9 @@ struct HoughSkewConfig {
   double trim_sigma = 2.0;         ///< [-] drop points beyond this many rms from their line, refit
   bool common_heading = true;      ///< true: rows share one direction; false: one TLS line each
   double min_row_length = 0.5;     ///< [m] rows whose support spans less along x are dropped
+  /// [m] rows whose band points spread more (RMS across the line) are dropped: a 0.5 m vine canopy
+  /// gives ~0.15 m, a weed strip filling the band ~0.2 m (rownav)
+  double max_row_rms = 0.17;
 
   /// Row crop preset (maize, corn; rows 0.7-0.8 m apart, 2D scanner): chosen for the crop type,
   /// not for one data set. Validated on corn_rows_2d (see tests/detect/hough_skew_test.cpp).
@@ -94,6 +97,7 @@ struct HoughSkewConfig {
     v("trim_sigma", s.trim_sigma);
     v("common_heading", s.common_heading);
     v("min_row_length", s.min_row_length);
+    v("max_row_rms", s.max_row_rms);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

@@ -36,10 +36,13 @@ struct ParallelLinesConfig {
   int min_inliers = 8;            ///< [-] fewer inliers on a side: that side is not reported
   double min_row_length = 0.5;    ///< [m] support shorter along x: the side is not reported
   bool detect_trunks = true;      ///< find the nearest trunk on each side (Lan 2022 Fig. 1)
-  double trunk_z_min = 0.1;       ///< [m] trunk band above the ground (flat ground, base z = 0)
-  double trunk_z_max = 0.4;       ///< [m]
+  double trunk_z_min = 0.1;  ///< [m] trunk band above the ground (flat ground, base z = 0)
+  /// [m] top of the trunk band: below the lowest cordon / wire (vineyards: 0.3 m and up), where
+  /// only trunks and posts stand (Lan 2022 keeps trunks out of its 0.5 m line-fitting cut)
+  double trunk_z_max = 0.3;
   double trunk_cluster_radius = 0.15;   ///< [m] points closer than this join one cluster
   int trunk_min_points = 3;             ///< [-] smaller clusters are ignored
+  double trunk_max_size = 0.3;          ///< [m] larger clusters (bounding-box diagonal) are not trunks
   double trunk_max_line_distance = 0.4; ///< [m] a trunk lies this close to its row line
   double trunk_max_range = 5.0;         ///< [m] trunks farther from the robot are ignored
 
@@ -53,6 +56,7 @@ struct ParallelLinesConfig {
     c.max_width = 1.5;
     c.min_sample_dx = 0.5;
     c.min_row_length = 0.3;
+    c.min_contrast = 1.2;  // leaves reach into narrow corridors: less empty space between rows
     return c;
   }
 
@@ -76,6 +80,7 @@ struct ParallelLinesConfig {
     v("trunk_z_max", s.trunk_z_max);
     v("trunk_cluster_radius", s.trunk_cluster_radius);
     v("trunk_min_points", s.trunk_min_points);
+    v("trunk_max_size", s.trunk_max_size);
     v("trunk_max_line_distance", s.trunk_max_line_distance);
     v("trunk_max_range", s.trunk_max_range);
   }
