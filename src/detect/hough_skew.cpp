@@ -47,6 +47,7 @@ void HoughSkewConfig::validate() const {
   check(y_min < y_max, "y_min", "must be < y_max");
   core::check_range(bins, 4, 100000, "bins");
   core::check_positive(min_points, "min_points");
+  core::check_range(max_vote_points, 100, 100000000, "max_vote_points");
   core::check_non_negative(min_dispersion, "min_dispersion");
   core::check_positive(min_segment_bins, "min_segment_bins");
   core::check_positive(min_segment_points, "min_segment_points");
@@ -75,14 +76,14 @@ HoughSkewDetector::HoughSkewDetector(const HoughSkewConfig& config) : config_(co
   hist_.resize(static_cast<std::size_t>(config_.bins));
 }
 
-double HoughSkewDetector::column(double s, double c) {
+double HoughSkewDetector::column(const std::vector<Eigen::Vector2f>& pts, double s, double c) {
   // Nehme 2021 eq. (1): y_rot = x sin(gamma) + y cos(gamma), one vote per point.
   std::fill(hist_.begin(), hist_.end(), 0);
   const float fs = static_cast<float>(s), fc = static_cast<float>(c);
   const float y0 = static_cast<float>(config_.y_min);
   const float inv = static_cast<float>(config_.bins / (config_.y_max - config_.y_min));
   const int nb = config_.bins;
-  for (const auto& p : pts_) {
+  for (const auto& p : pts) {
     const float b = (p.x() * fs + p.y() * fc - y0) * inv;
     if (b >= 0.0f && b < static_cast<float>(nb)) ++hist_[static_cast<std::size_t>(b)];
   }
@@ -96,11 +97,19 @@ double HoughSkewDetector::column(double s, double c) {
 }
 
 double HoughSkewDetector::best_gamma(double& variance) {
-  // Nehme 2021 sec. 3.2.1: the heading maximises the variance of the y-histogram.
+  // Nehme 2021 sec. 3.2.1: the heading maximises the variance of the y-histogram. rownav: the
+  // search votes with an evenly strided subset of at most max_vote_points points.
+  const std::vector<Eigen::Vector2f>* votes = &pts_;
+  if (pts_.size() > static_cast<std::size_t>(config_.max_vote_points)) {
+    const std::size_t stride = (pts_.size() + config_.max_vote_points - 1) / config_.max_vote_points;
+    subset_.clear();
+    for (std::size_t i = 0; i < pts_.size(); i += stride) subset_.push_back(pts_[i]);
+    votes = &subset_;
+  }
   variance = -1.0;
   double best = 0.0;
   for (std::size_t i = 0; i < coarse_gamma_.size(); ++i) {
-    const double v = column(coarse_sin_[i], coarse_cos_[i]);
+    const double v = column(*votes, coarse_sin_[i], coarse_cos_[i]);
     if (v > variance) variance = v, best = coarse_gamma_[i];
   }
   if (config_.refine_heading) {  // rownav: fine pass +- one coarse step around the best column
@@ -110,11 +119,11 @@ double HoughSkewDetector::best_gamma(double& variance) {
       const double g = centre + i * step;
       if (i == 0 || g < config_.heading_min_deg * kDeg || g > config_.heading_max_deg * kDeg)
         continue;
-      const double v = column(std::sin(g), std::cos(g));
+      const double v = column(*votes, std::sin(g), std::cos(g));
       if (v > variance) variance = v, best = g;
     }
   }
-  column(std::sin(best), std::cos(best));
+  variance = column(pts_, std::sin(best), std::cos(best));  // every point for the segmentation
   return best;
 }
 

@@ -31,6 +31,9 @@ struct HoughSkewConfig {
   int bins = 100;                  ///< [-] y_rot bins over [y_min, y_max] (Nehme 2021 sec. 4)
   bool use_cloud = true;           ///< vote with the 3D cloud's x, y when given (Nehme 2021)
   int min_points = 10;             ///< [-] fewer valid points: no_rows
+  /// [-] the heading search votes with at most this many points (even stride); segmentation and
+  /// fit use all (rownav: bounds the cost of dense clouds)
+  int max_vote_points = 4000;
   /// [-] best column variance / mean must exceed this (a uniform, row-less field gives ~1 with
   /// count histograms, Poisson); rownav guard against open fields.
   double min_dispersion = 3.0;
@@ -83,6 +86,7 @@ struct HoughSkewConfig {
     v("bins", s.bins);
     v("use_cloud", s.use_cloud);
     v("min_points", s.min_points);
+    v("max_vote_points", s.max_vote_points);
     v("min_dispersion", s.min_dispersion);
     v("min_segment_bins", s.min_segment_bins);
     v("min_segment_points", s.min_segment_points);
@@ -119,8 +123,8 @@ class HoughSkewDetector : public RowDetector {
     double lo = 0.0, hi = 0.0;  ///< [m] y_rot extent of the segment's bins
     int votes = 0;
   };
-  /// y_rot histogram of pts_ at heading angle gamma (sin, cos given) into hist_; returns variance.
-  double column(double s, double c);
+  /// y_rot histogram of pts at heading angle gamma (sin, cos given) into hist_; returns variance.
+  double column(const std::vector<Eigen::Vector2f>& pts, double s, double c);
   /// Coarse (and fine) search; returns gamma of the maximum-variance column, hist_ filled there.
   double best_gamma(double& variance);
   /// Mean-threshold segmentation of hist_ (Nehme 2021 sec. 3.2.3) with rownav rejections.
@@ -137,7 +141,7 @@ class HoughSkewDetector : public RowDetector {
   HoughSkewConfig config_;
   std::vector<double> coarse_gamma_, coarse_sin_, coarse_cos_;  // precomputed tables
   // Per-frame buffers, reused.
-  std::vector<Eigen::Vector2f> pts_;
+  std::vector<Eigen::Vector2f> pts_, subset_;
   std::vector<int> hist_, quartile_;
   std::vector<Segment> segments_;
   double threshold_ = 0.0;  // column mean of the current histogram
