@@ -20,7 +20,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 /// Points between the two lines count against a hypothesis only when they are off both lines.
 struct Counts {
   int left = 0, right = 0, between = 0;
-  int outside = 0;  // off both lines, within 3 d beyond either line (away from the corridor)
+  int outside = 0;  // off both lines, within 2 d beyond either line (away from the corridor)
 };
 
 /// Classifies points against y = a x + b_l / b_r with perpendicular distance d.
@@ -33,7 +33,7 @@ Counts classify(const Pts& pts, double a, double bl, double br, double d) {
     if (std::abs(r - bl) <= lim && std::abs(r - bl) <= std::abs(r - br)) ++c.left;
     else if (std::abs(r - br) <= lim) ++c.right;
     else if (r > br && r < bl) ++c.between;
-    else if (r - bl <= 3.0 * lim && br - r <= 3.0 * lim) ++c.outside;
+    else if (r - bl <= 2.0 * lim && br - r <= 2.0 * lim) ++c.outside;
   }
   return c;
 }
@@ -198,9 +198,9 @@ core::RowObservation ParallelLinesDetector::detect(const DetectorInput& input) {
   refine(m);
   const Counts n = classify(pts_, m.a, m.bl, m.br, config_.inlier_distance);
   const double d = config_.inlier_distance, c = 1.0 / std::sqrt(1.0 + m.a * m.a);
-  // Background density across the rows: between the lines and in a 2 d guard band beyond each.
+  // Background density across the rows: between the lines and in a d guard band beyond each.
   const double background = (n.between + n.outside) /
-                            (std::max((m.bl - m.br) * c - 2.0 * d, 0.0) + 4.0 * d);
+                            (std::max((m.bl - m.br) * c - 2.0 * d, 0.0) + 2.0 * d);
   const auto keep = [&](int count, const std::vector<Eigen::Vector2f>& support) {
     if (count < config_.min_inliers || support.size() < 2) return false;
     if (count / (2.0 * d) < config_.min_contrast * background) return false;
