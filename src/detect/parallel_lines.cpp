@@ -87,6 +87,7 @@ void ParallelLinesConfig::validate() const {
   core::check_positive(min_width, "min_width");
   core::check(max_width > min_width, "max_width", "must be > min_width");
   core::check_non_negative(between_penalty, "between_penalty");
+  core::check_non_negative(step_out_ratio, "step_out_ratio");
   core::check_range(refine_iterations, 1, 100, "refine_iterations");
   core::check_positive(min_inliers, "min_inliers");
   core::check_non_negative(min_row_length, "min_row_length");
@@ -160,6 +161,34 @@ void ParallelLinesDetector::refine(Model& m) {
   }
 }
 
+void ParallelLinesDetector::step_out(Model& m) {
+  // rownav: a weed strip (or a sparse line of leaves) in the corridor can out-score the real row
+  // behind it, since that row's corridor holds the weeds. When a line at least
+  // step_out_ratio x better supported lies farther out on the same side (within max_width), the
+  // side moves to it.
+  const double lim = config_.inlier_distance * std::sqrt(1.0 + m.a * m.a);
+  const double reach = config_.max_width * std::sqrt(1.0 + m.a * m.a);
+  for (int side = 0; side < 2; ++side) {
+    double& b = side == 0 ? m.bl : m.br;
+    const double sign = side == 0 ? 1.0 : -1.0;
+    residuals_.clear();
+    int current = 0;
+    for (const auto& p : scoring_) {
+      const double out = sign * (p.y() - m.a * p.x() - b);  // > 0: beyond the line
+      if (std::abs(out) <= lim) ++current;
+      else if (out > lim && out < reach) residuals_.push_back(out);
+    }
+    std::sort(residuals_.begin(), residuals_.end());
+    const auto need = std::max<std::size_t>(1, std::size_t(config_.step_out_ratio * current));
+    for (std::size_t i = 0, j = 0; i < residuals_.size(); ++i) {  // nearest dense 2 lim window
+      while (residuals_[i] - residuals_[j] > 2.0 * lim) ++j;
+      if (i - j + 1 < need) continue;
+      b += sign * 0.5 * (residuals_[i] + residuals_[j]);
+      break;
+    }
+  }
+}
+
 void ParallelLinesDetector::find_trunks(const core::PointCloud& cloud, const Model& m, bool has_l,
                                         bool has_r) {
   // Lan 2022 Fig. 1: X_l, X_r, the closest trunk centre each side, from the points of the
@@ -196,6 +225,10 @@ core::RowObservation ParallelLinesDetector::detect(const DetectorInput& input) {
   Model m;
   if (!ransac(m)) return obs;
   refine(m);
+  if (config_.step_out_ratio > 0.0) {
+    step_out(m);
+    refine(m);
+  }
   const Counts n = classify(pts_, m.a, m.bl, m.br, config_.inlier_distance);
   const double d = config_.inlier_distance, c = 1.0 / std::sqrt(1.0 + m.a * m.a);
   // Background density across the rows: between the lines and in a d guard band beyond each.

@@ -68,7 +68,7 @@ TEST(ParallelLines, SyntheticHard) {
               "among them worst heading %.3f deg, worst lateral %.1f mm\n", ok, n, worst_heading,
               1000 * worst_lat);
   // Weed strips at this density look like rows of their own to a LiDAR: some scenes are lost.
-  EXPECT_GE(ok, 5);  // measured 5 / 12: RANSAC often pairs a row with a weed strip
+  EXPECT_GE(ok, 8);  // measured 8 / 12: RANSAC still pairs a row with a weed strip at times
 }
 
 TEST(ParallelLines, OneRowIsDegraded) {

@@ -29,6 +29,9 @@ struct ParallelLinesConfig {
   double min_width = 0.4;         ///< [m] smallest corridor width b_l - b_r (at x = 0)
   double max_width = 4.0;         ///< [m] largest corridor width
   double between_penalty = 1.0;   ///< [-] score = inliers - penalty x points between the lines
+  /// [-] a side moves to a parallel line farther out with this x more support (weed strips in
+  /// the corridor; rownav); 0 = off
+  double step_out_ratio = 2.0;
   int refine_iterations = 3;      ///< [-] inlier re-selection + joint least squares passes
   /// [-] a side's inlier density (per metre across) must exceed this x the density between the
   /// lines; a uniform open field gives ~1 (rownav guard).
@@ -71,6 +74,7 @@ struct ParallelLinesConfig {
     v("min_width", s.min_width);
     v("max_width", s.max_width);
     v("between_penalty", s.between_penalty);
+    v("step_out_ratio", s.step_out_ratio);
     v("refine_iterations", s.refine_iterations);
     v("min_contrast", s.min_contrast);
     v("min_inliers", s.min_inliers);
@@ -115,6 +119,8 @@ class ParallelLinesDetector : public RowDetector {
   double score(const Model& m) const;
   /// Joint least squares of (a, b_l, b_r) on the inliers, repeated (Lan 2022 eq. (23)).
   void refine(Model& m);
+  /// Moves a side outwards to a much better supported parallel line (rownav).
+  void step_out(Model& m);
   void find_trunks(const core::PointCloud& cloud, const Model& m, bool has_l, bool has_r);
 
   ParallelLinesConfig config_;
@@ -123,6 +129,7 @@ class ParallelLinesDetector : public RowDetector {
   std::vector<Eigen::Vector2f> pts_, scoring_, left_, right_;
   std::vector<Eigen::Vector2f> band_;
   std::vector<int> label_;
+  std::vector<double> residuals_;
 };
 
 }  // namespace rownav::detect
