@@ -161,7 +161,8 @@ void ParallelLinesDetector::refine(Model& m) {
   }
 }
 
-void ParallelLinesDetector::step_out(Model& m) {
+bool ParallelLinesDetector::step_out(Model& m) {
+  bool moved = false;
   // rownav: a weed strip (or a sparse line of leaves) in the corridor can out-score the real row
   // behind it, since that row's corridor holds the weeds. When a line at least
   // step_out_ratio x better supported lies farther out on the same side (within max_width), the
@@ -184,9 +185,11 @@ void ParallelLinesDetector::step_out(Model& m) {
       while (residuals_[i] - residuals_[j] > 2.0 * lim) ++j;
       if (i - j + 1 < need) continue;
       b += sign * 0.5 * (residuals_[i] + residuals_[j]);
+      moved = true;
       break;
     }
   }
+  return moved;
 }
 
 void ParallelLinesDetector::find_trunks(const core::PointCloud& cloud, const Model& m, bool has_l,
@@ -225,10 +228,7 @@ core::RowObservation ParallelLinesDetector::detect(const DetectorInput& input) {
   Model m;
   if (!ransac(m)) return obs;
   refine(m);
-  if (config_.step_out_ratio > 0.0) {
-    step_out(m);
-    refine(m);
-  }
+  if (config_.step_out_ratio > 0.0 && step_out(m)) refine(m);
   const Counts n = classify(pts_, m.a, m.bl, m.br, config_.inlier_distance);
   const double d = config_.inlier_distance, c = 1.0 / std::sqrt(1.0 + m.a * m.a);
   // Background density across the rows: between the lines and in a d guard band beyond each.

@@ -119,8 +119,8 @@ class ParallelLinesDetector : public RowDetector {
   double score(const Model& m) const;
   /// Joint least squares of (a, b_l, b_r) on the inliers, repeated (Lan 2022 eq. (23)).
   void refine(Model& m);
-  /// Moves a side outwards to a much better supported parallel line (rownav).
-  void step_out(Model& m);
+  /// Moves a side outwards to a much better supported parallel line (rownav); true if moved.
+  bool step_out(Model& m);
   void find_trunks(const core::PointCloud& cloud, const Model& m, bool has_l, bool has_r);
 
   ParallelLinesConfig config_;
