@@ -1,0 +1,178 @@
+#include "rownav/detect/parallel_lines.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "detector_eval.hpp"
+
+namespace rownav::detect {
+namespace {
+
+using test::kDeg;
+
+TEST(ParallelLines, SyntheticSweepCleanish) {
+  ParallelLinesDetector det;
+  double worst_heading = 0.0, worst_lat = 0.0;
+  for (const double spacing : {0.75, 1.8, 2.8})
+    for (int h = -15; h <= 15; h += 5)
+      for (const double off : {-0.2, 0.0, 0.15}) {
+        test::SyntheticRows s;
+        s.rows = 4, s.spacing = spacing, s.heading = h * kDeg, s.offset = off * spacing;
+        s.gap_probability = 0.1, s.weeds = 60, s.outliers = 30;
+        s.seed = std::uint64_t(100 + h);
+        const auto scene = test::make_rows(s);
+        const auto obs = det.detect(test::input_of(scene));
+        const auto e = test::corridor_error(obs, scene.truth);
+        SCOPED_TRACE(testing::Message() << "spacing " << spacing << " heading " << h << " off " << off);
+        ASSERT_EQ(obs.status, core::DetectionStatus::ok);
+        EXPECT_EQ(obs.rows.size(), 2u);
+        EXPECT_LT(e.heading_deg, 0.5);
+        EXPECT_LT(e.worst(), 0.03);
+        worst_heading = std::max(worst_heading, e.heading_deg);
+        worst_lat = std::max(worst_lat, e.worst());
+      }
+  std::printf("[parallel_lines synthetic clean-ish] worst heading %.3f deg, worst lateral %.1f mm\n",
+              worst_heading, 1000 * worst_lat);
+}
+
+TEST(ParallelLines, SyntheticHard) {
+  ParallelLinesDetector det;
+  int ok = 0, n = 0;
+  double worst_heading = 0.0, worst_lat = 0.0;
+  for (const double spacing : {0.75, 1.8, 2.8})
+    for (int h = -15; h <= 15; h += 10) {
+      test::SyntheticRows s;
+      s.rows = 5, s.spacing = spacing, s.heading = h * kDeg, s.offset = 0.25 * spacing;
+      s.noise = 0.03, s.gap_probability = 0.3, s.outliers = 300;
+      s.weeds = static_cast<int>(100 * spacing);  // same weed density per m2 for every spacing
+      s.seed = std::uint64_t(7 + h);
+      const auto scene = test::make_rows(s);
+      const auto obs = det.detect(test::input_of(scene));
+      const auto e = test::corridor_error(obs, scene.truth);
+      ++n;
+      if (std::getenv("ROWNAV_DEBUG")) {
+        std::printf("sp %.2f h %d: truth", spacing, h);
+        for (const auto& t : scene.truth) std::printf(" %.3f", t.y_at(0.0));
+        std::printf(" | det");
+        for (const auto& r : obs.rows) std::printf(" %.3f(%d, %.1f deg)", r.offset, r.support, r.heading / kDeg);
+        std::printf("\n");
+      }
+      // Good: the corridor is the right one, within the hard-scene bounds.
+      if (!e.found || e.heading_deg > 1.5 || e.worst() > 0.08) continue;
+      ++ok;
+      worst_heading = std::max(worst_heading, e.heading_deg);
+      worst_lat = std::max(worst_lat, e.worst());
+    }
+  std::printf("[parallel_lines synthetic hard] %d / %d corridors right (heading < 1.5 deg, rows < 8 cm); "
+              "among them worst heading %.3f deg, worst lateral %.1f mm\n", ok, n, worst_heading,
+              1000 * worst_lat);
+  // Weed strips at this density look like rows of their own to a LiDAR: some scenes are lost.
+  EXPECT_GE(ok, 8);  // measured 8 / 12: RANSAC still pairs a row with a weed strip at times
+}
+
+TEST(ParallelLines, OneRowIsDegraded) {
+  ParallelLinesDetector det;
+  test::SyntheticRows s;
+  s.rows = 1, s.offset = 0.9;
+  auto obs = det.detect(test::input_of(test::make_rows(s)));
+  EXPECT_NE(obs.status, core::DetectionStatus::ok);
+}
+
+TEST(ParallelLines, RobotOffCentre) {
+  ParallelLinesDetector det;
+  for (const double off : {-0.6, 0.6}) {
+    test::SyntheticRows s;
+    s.rows = 4, s.spacing = 1.8, s.offset = off, s.heading = -8 * kDeg, s.weeds = 50;
+    const auto scene = test::make_rows(s);
+    const auto obs = det.detect(test::input_of(scene));
+    const auto e = test::corridor_error(obs, scene.truth);
+    ASSERT_TRUE(e.found);
+    EXPECT_LT(e.worst(), 0.03);
+  }
+}
+
+TEST(ParallelLines, DegenerateInputs) {
+  ParallelLinesDetector det;
+  int i = 0;
+  for (const auto& pts : test::degenerate_frames()) {
+    DetectorInput in;
+    in.points = pts;
+    const auto obs = det.detect(in);
+    SCOPED_TRACE(i++);
+    EXPECT_NE(obs.status, core::DetectionStatus::ok);
+    EXPECT_FALSE(det.last_trunks()[0].found);
+  }
+}
+
+TEST(ParallelLines, DeterministicAndSeeded) {
+  test::SyntheticRows s;
+  s.weeds = 300, s.outliers = 200, s.heading = 0.1, s.noise = 0.03;
+  const auto in = test::input_of(test::make_rows(s));
+  ParallelLinesDetector a, b;
+  const auto oa = a.detect(in), ob = b.detect(in), oa2 = a.detect(in);
+  ASSERT_EQ(oa.rows.size(), ob.rows.size());
+  EXPECT_EQ(oa.heading, ob.heading);
+  EXPECT_EQ(oa.heading, oa2.heading);
+}
+
+TEST(ParallelLines, ConfigValidation) {
+  ParallelLinesConfig c;
+  c.max_width = 0.1;
+  EXPECT_THROW(ParallelLinesDetector{c}, std::invalid_argument);
+  c = {};
+  c.trunk_z_max = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+TEST(ParallelLines, SimulatedVineyardFrameAndTrunks) {
+  sim::FieldConfig fc;
+  fc.vineyard.rows = 6, fc.vineyard.row_spacing = 1.8, fc.vineyard.row_length = 30.0;
+  const auto field = sim::generate_field(fc);
+  preprocess::PreprocessConfig pc;
+  pc.min_height = 0.1;  // keep the trunk band (Lan 2022 Fig. 1)
+  preprocess::Preprocessor pre(pc);
+  ParallelLinesDetector det;
+  int trunks_right = 0;
+  for (const double dh : {-5.0, 5.0}) {
+    const auto f = test::sim_frame(field, 2, dh * kDeg, 0.2);
+    pre.run(f.cloud_base);
+    const auto obs = det.detect(pre.input(0.0));
+    const auto e = test::corridor_error(obs, test::truth_lines(f.truth));
+    std::printf("[parallel_lines OS1-16 sim, offset %+.0f deg] heading error %.3f deg, corridor centre "
+                "%.1f mm, rows left %.1f mm right %.1f mm\n", dh, e.heading_deg, 1000 * e.centre,
+                1000 * e.left, 1000 * e.right);
+    ASSERT_TRUE(e.found);
+    EXPECT_LT(e.heading_deg, 0.5);
+    EXPECT_LT(e.centre, 0.03);
+    // The LiDAR sees the corridor side of each 0.5 m canopy: every row comes out ~8 cm closer to
+    // the robot than its centre line (the paper's "centre of the perceived canopy").
+    EXPECT_LT(e.worst(), 0.12);
+    // Trunks: each found centre is near a vine or post of the field (base frame).
+    const core::Pose2 T = f.truth.T_world_base;
+    for (int side = 0; side < 2; ++side) {
+      const auto& t = det.last_trunks()[std::size_t(side)];
+      EXPECT_EQ(side == 0, t.centre.y() > 0.0);
+      if (!t.found) continue;
+      double nearest = 1e9;
+      for (const auto& p : field.plants) nearest = std::min(nearest, (T * t.centre - p.position).norm());
+      std::printf("  trunk %s at (%.2f, %.2f), %.1f cm from the nearest plant\n",
+                  side == 0 ? "left" : "right", t.centre.x(), t.centre.y(), 100 * nearest);
+      trunks_right += nearest < 0.1;
+    }
+  }
+  // Measured: 3 of the 4 nearest trunks within 3 cm; the 4th is low canopy between two vines.
+  EXPECT_GE(trunks_right, 3);
+}
+
+TEST(ParallelLines, RealCornRows) {
+  ParallelLinesDetector det(ParallelLinesConfig::row_crop());
+  const auto s = test::corn_stats(det);
+  ASSERT_EQ(s.frames, 1630);
+  EXPECT_GE(s.detected, 0.98 * s.lines);
+  EXPECT_LT(s.median_lat_05, 0.05);  // trivial baseline 7.8 cm
+  EXPECT_LT(s.median_heading_deg, 4.0);  // trivial baseline 8.6 deg
+}
+
+}  // namespace
+}  // namespace rownav::detect
