@@ -61,7 +61,7 @@ const core::PointCloud& frame() {
 
 preprocess::PreprocessConfig preprocess_config() {
   preprocess::PreprocessConfig pc;
-  pc.voxel_size = 0.15;  // Nehme 2021 sec. 4
+  pc.voxel.voxel_size = 0.15;  // Nehme 2021 sec. 4
   return pc;
 }
 

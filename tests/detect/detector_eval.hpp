@@ -143,7 +143,8 @@ CornStats corn_stats(Detector& det) {
   const auto clouds = io::read_points_csv(dir + "scans.csv");
   const auto labels = io::read_row_labels(dir + "labels.csv");
   preprocess::PreprocessConfig pc;
-  pc.x_min = 0.0, pc.x_max = 2.5, pc.y_min = -1.2, pc.y_max = 1.2;
+  pc.crop.x_min = 0.0, pc.crop.x_max = 2.5, pc.crop.y_min = -1.2, pc.crop.y_max = 1.2;
+  pc.voxel.voxel_size = 0.0;  // 2D scans are already sparse
   preprocess::Preprocessor pre(pc);
   CornStats s;
   std::vector<double> lat05, lat15, head;

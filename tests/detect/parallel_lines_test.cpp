@@ -130,7 +130,7 @@ TEST(ParallelLines, SimulatedVineyardFrameAndTrunks) {
   fc.vineyard.rows = 6, fc.vineyard.row_spacing = 1.8, fc.vineyard.row_length = 30.0;
   const auto field = sim::generate_field(fc);
   preprocess::PreprocessConfig pc;
-  pc.min_height = 0.1;  // keep the trunk band (Lan 2022 Fig. 1)
+  pc.height.min_height = 0.1;  // keep the trunk band (Lan 2022 Fig. 1)
   preprocess::Preprocessor pre(pc);
   ParallelLinesDetector det;
   int trunks_right = 0;
