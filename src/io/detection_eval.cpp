@@ -142,7 +142,8 @@ CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel&
   CornFrameScore s;
   Eigen::Vector2d det_dir = Eigen::Vector2d::Zero(), lab_dir = Eigen::Vector2d::Zero();
   for (const auto& [index, seg] : {std::pair{obs.left, &label.left}, std::pair{obs.right, &label.right}}) {
-    const core::Line2 truth = seg->line();
+    core::Line2 truth = seg->line();
+    if (truth.direction.x() < 0.0) truth.direction = -truth.direction;  // forward, as the rows
     for (const auto& r : obs.rows)
       if (std::abs(y_at(r.line, 1.0) - y_at(truth, 1.0)) <= kCornMatch) {
         ++s.lines_detected;
@@ -150,10 +151,12 @@ CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel&
       }
     if (index < 0 || index >= static_cast<int>(obs.rows.size())) continue;
     const auto& row = obs.rows[static_cast<std::size_t>(index)].line;
+    ++s.lines_output;
+    s.row_heading_deg.push_back(angle_error_deg(row.heading(), truth.heading()));
     s.lateral_05.push_back(std::abs(y_at(row, 0.5) - y_at(truth, 0.5)));
     s.lateral_15.push_back(std::abs(y_at(row, 1.5) - y_at(truth, 1.5)));
     det_dir += row.direction;
-    lab_dir += truth.direction.x() < 0.0 ? Eigen::Vector2d(-truth.direction) : truth.direction;
+    lab_dir += truth.direction;
   }
   if (det_dir.squaredNorm() > 0.0)
     s.heading_error_deg = angle_error_deg(std::atan2(det_dir.y(), det_dir.x()),
@@ -167,8 +170,8 @@ CornEval evaluate_corn(detect::DetectionPipeline& pipeline, const std::filesyste
   const auto clouds = read_points_csv(data_dir / "scans.csv");
   CornEval e;
   e.detector = std::string(pipeline.detector().name());
-  std::vector<double> l05, l15, heading;
-  int detected = 0, n = 0;
+  std::vector<double> l05, l15, heading, row_heading;
+  int detected = 0, output = 0, n = 0;
   double ms = 0.0;
   std::vector<Eigen::Vector2f> pts;
   for (const auto& cloud : clouds) {
@@ -184,6 +187,8 @@ CornEval evaluate_corn(detect::DetectionPipeline& pipeline, const std::filesyste
     ++e.frames;
     e.lines += 2;
     detected += s.lines_detected;
+    output += s.lines_output;
+    row_heading.insert(row_heading.end(), s.row_heading_deg.begin(), s.row_heading_deg.end());
     l05.insert(l05.end(), s.lateral_05.begin(), s.lateral_05.end());
     l15.insert(l15.end(), s.lateral_15.begin(), s.lateral_15.end());
     if (s.heading_error_deg) heading.push_back(*s.heading_error_deg);
@@ -192,7 +197,9 @@ CornEval evaluate_corn(detect::DetectionPipeline& pipeline, const std::filesyste
   e.lateral_05_m = make_stat(std::move(l05));
   e.lateral_15_m = make_stat(std::move(l15));
   e.heading_deg = make_stat(std::move(heading));
+  e.row_heading_deg = make_stat(std::move(row_heading));
   e.detection_rate = static_cast<double>(detected) / e.lines;
+  e.output_rate = static_cast<double>(output) / e.lines;
   e.ms_per_frame = ms / e.frames;
   return e;
 }

@@ -52,12 +52,14 @@ std::string scenario_table_markdown(const std::vector<ScenarioEval>& results) {
 std::string corn_table_markdown(const std::vector<CornEval>& results) {
   std::string out =
       "| detector | frames | lateral error at 0.5 m [cm] median / p95 | lateral error at 1.5 m "
-      "[cm] median / p95 | heading error [deg] median / p95 | lines detected | time [ms / "
-      "frame] |\n|---|---:|---:|---:|---:|---:|---:|\n";
+      "[cm] median / p95 | heading error [deg] median / p95 | row heading error [deg] median / p95 "
+      "| lines detected (within 0.2 m) | lines output | time [ms / frame] |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : results) {
     out += "| " + r.detector + " | " + std::to_string(r.frames) + " | " +
            stat_cell(r.lateral_05_m, 100.0) + " | " + stat_cell(r.lateral_15_m, 100.0) + " | " +
-           stat_cell(r.heading_deg, 1.0) + " | " + percent(r.detection_rate) + " | " +
+           stat_cell(r.heading_deg, 1.0) + " | " + stat_cell(r.row_heading_deg, 1.0) + " | " +
+           percent(r.detection_rate) + " | " + percent(r.output_rate) + " | " +
            fmt(r.ms_per_frame, "%.3f") + " |\n";
   }
   return out;
@@ -84,7 +86,9 @@ std::string eval_json(const std::vector<ScenarioEval>& simulated,
                            {"lateral_error_0_5_m", stat_json(r.lateral_05_m)},
                            {"lateral_error_1_5_m", stat_json(r.lateral_15_m)},
                            {"heading_error_deg", stat_json(r.heading_deg)},
+                           {"row_heading_error_deg", stat_json(r.row_heading_deg)},
                            {"detection_rate", number(r.detection_rate)},
+                           {"output_rate", number(r.output_rate)},
                            {"ms_per_frame", number(r.ms_per_frame)}});
   return doc.dump(2) + "\n";
 }

@@ -22,8 +22,12 @@
 ///     labelled left (right) line y(x), pooled over both lines;
 ///   * heading error [deg]: mean direction of the detected left and right rows minus the mean
 ///     direction of the labelled lines (one row only: that row against its label);
+///   * row heading error [deg]: each detected left (right) row's direction minus its labelled
+///     line's, pooled over both lines (the "heading error" of the baseline: the two
+///     baseline lines often splay symmetrically, so their mean direction is better than either);
 ///   * detection rate: labelled lines with some detected row within kCornMatch of it at x = 1 m,
-///     over all labelled lines.
+///     over all labelled lines; output rate: labelled lines for which the detector gave a row on
+///     that side (RowObservation::left / right), whatever its accuracy.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <filesystem>
@@ -118,7 +122,9 @@ ScenarioEval evaluate_frames(detect::DetectionPipeline& pipeline, const Simulate
 struct CornFrameScore {
   std::vector<double> lateral_05, lateral_15;  ///< [m] per detected labelled side
   std::optional<double> heading_error_deg;
+  std::vector<double> row_heading_deg;  ///< [deg] per detected labelled side
   int lines_detected = 0;  ///< of the 2 labelled lines
+  int lines_output = 0;    ///< labelled sides with a detected left / right row
 };
 CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel& label);
 
@@ -126,8 +132,9 @@ CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel&
 struct CornEval {
   std::string detector;
   int frames = 0, lines = 0;
-  Stat lateral_05_m, lateral_15_m, heading_deg;
-  double detection_rate = 0.0;  ///< [0, 1] labelled lines detected
+  Stat lateral_05_m, lateral_15_m, heading_deg, row_heading_deg;
+  double detection_rate = 0.0;  ///< [0, 1] labelled lines detected (within kCornMatch)
+  double output_rate = 0.0;     ///< [0, 1] labelled lines with a detected row on their side
   double ms_per_frame = 0.0;
 };
 /// Runs `pipeline` (process_points, the data are in the sensor frame = base frame) on every
