@@ -41,8 +41,9 @@ Eigen::Isometry3d mount_transform(const std::vector<double>& m) {
 }
 
 json row_json(const core::RowLine& r) {
-  return {{"offset", r.offset}, {"heading_deg", core::rad2deg(r.heading)}, {"x_min", r.x_min},
-          {"x_max", r.x_max},   {"support", r.support},                    {"rms", r.rms}};
+  return {{"offset", r.offset},   {"heading_deg", core::rad2deg(r.heading)},
+          {"x_min", r.x_min},     {"x_max", r.x_max},
+          {"support", r.support}, {"rms", r.rms}};
 }
 
 json side_json(const core::RowObservation& obs, int index) {
@@ -167,7 +168,8 @@ void run(const DetectArgs& a) {
   if (fs::is_directory(a.in)) {
     run_recording(a, emit);  // its own pipeline: the mount comes from the manifest
   } else {
-    const Eigen::Isometry3d T = a.mount.empty() ? Eigen::Isometry3d::Identity() : mount_transform(a.mount);
+    const Eigen::Isometry3d T =
+        a.mount.empty() ? Eigen::Isometry3d::Identity() : mount_transform(a.mount);
     auto p = io::make_pipeline(a.detector, a.config, T);
     if (ext == ".pcd" || ext == ".ply" || ext == ".PCD" || ext == ".PLY")
       emit(p, p.process(io::read_cloud(a.in)), std::nullopt);
@@ -176,11 +178,15 @@ void run(const DetectArgs& a) {
     else if (ext == ".csv")
       run_points_csv(a.in, p, emit);
     else
-      throw io::InputError(a.in.string(), "", "unknown input type (expected .pcd, .ply, .csv or a recording directory)");
+      throw io::InputError(
+          a.in.string(), "",
+          "unknown input type (expected .pcd, .ply, .csv or a recording directory)");
   }
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
   if (!a.svg.empty()) {
-    if (!svg_obs) throw std::invalid_argument("--svg-frame " + std::to_string(a.svg_frame) + ": the input has " + std::to_string(index) + " frame(s)");
+    if (!svg_obs)
+      throw std::invalid_argument("--svg-frame " + std::to_string(a.svg_frame) +
+                                  ": the input has " + std::to_string(index) + " frame(s)");
     write_detection_picture(a.svg, svg_points, *svg_obs,
                             a.detector + ", frame " + std::to_string(a.svg_frame) + ": " +
                                 std::string(core::enum_name(svg_obs->status)));
@@ -205,19 +211,24 @@ void add_detect_command(CLI::App& app) {
   c->add_option("--detector", a->detector, "row detector: " + names)->required();
   c->add_option("--config", a->config,
                 "detection config YAML (preprocess: + one section per detector), e.g. "
-                "config/detect/vineyard.yaml; default: built-in defaults")->check(CLI::ExistingFile);
+                "config/detect/vineyard.yaml; default: built-in defaults")
+      ->check(CLI::ExistingFile);
   c->add_option("--in", a->in,
                 "input: .pcd / .ply cloud; .csv of x,y[,z] points (a `frame` column: one output "
                 "line per frame; x,y only: a planar sensor); .csv of scans (header " +
-                    std::string(io::kScansCsvHeader) + "); or a recording directory (mount from "
-                    "its manifest's sensors.lidar)")->required()->check(CLI::ExistingPath);
+                    std::string(io::kScansCsvHeader) +
+                    "); or a recording directory (mount from "
+                    "its manifest's sensors.lidar)")
+      ->required()
+      ->check(CLI::ExistingPath);
   c->add_option("--out", a->out, "JSON-lines output file")->required();
   c->add_option("--svg", a->svg, "picture (.svg or .png) of one frame: points and detected rows");
   c->add_option("--svg-frame", a->svg_frame, "0-based frame drawn by --svg (default 0)");
   c->add_option("--lidar-mount", a->mount,
                 "T_base_lidar as x,y,z,roll_deg,pitch_deg,yaw_deg (metres, degrees; rotation "
                 "Rz(yaw) Ry(pitch) Rx(roll)); default: identity, or the recording's mount")
-      ->expected(6)->delimiter(',');
+      ->expected(6)
+      ->delimiter(',');
   c->callback([a] { run(*a); });
 }
 

@@ -12,7 +12,9 @@ namespace rownav::app {
 namespace {
 
 // Base frame (x forward, y left) to picture world (right, up): forward is up, left is left.
-Eigen::Vector2d view(double x, double y) { return {-y, x}; }
+Eigen::Vector2d view(double x, double y) {
+  return {-y, x};
+}
 
 const io::Color kPoints = io::Color::hex("#40b255");
 const io::Color kLeft = io::Color::hex("#d62728");
@@ -23,7 +25,8 @@ const io::Color kCorridor = io::Color::hex("#ff7f0e");
 Eigen::AlignedBox2d view_box(const std::vector<Eigen::Vector2f>& pts) {
   Eigen::AlignedBox2d box(view(-0.2, 0.5), view(1.0, -0.5));  // at least the robot's surroundings
   for (const auto& p : pts)
-    if (p.allFinite()) box.extend(view(std::clamp(p.x(), -5.0f, 20.0f), std::clamp(p.y(), -10.0f, 10.0f)));
+    if (p.allFinite())
+      box.extend(view(std::clamp(p.x(), -5.0f, 20.0f), std::clamp(p.y(), -10.0f, 10.0f)));
   box.min().array() -= 0.1;
   box.max().array() += 0.1;
   return box;
@@ -55,7 +58,10 @@ void write_detection_picture(const std::filesystem::path& out,
   for (std::size_t i = 0; i < obs.rows.size(); ++i) {
     const int k = static_cast<int>(i);
     const bool side = k == obs.left || k == obs.right;
-    draw_row(c, obs.rows[i], k == obs.left ? kLeft : k == obs.right ? kRight : kOther,
+    draw_row(c, obs.rows[i],
+             k == obs.left    ? kLeft
+             : k == obs.right ? kRight
+                              : kOther,
              side ? 3.0 : 1.5);
   }
   if (obs.corridor) {
@@ -70,10 +76,11 @@ void write_detection_picture(const std::filesystem::path& out,
                       {"right row", {kRight, {}, 3.0, false, false}},
                       {"other rows", {kOther, {}, 1.5, false, false}},
                       {"corridor centre", {kCorridor, {}, 2.0, false, true}},
-                      {"robot (base origin)", {io::Color::hex("#222222"), io::Color::hex("#222222"), 1.0, true, false}}});
+                      {"robot (base origin)",
+                       {io::Color::hex("#222222"), io::Color::hex("#222222"), 1.0, true, false}}});
   const Eigen::AlignedBox2d plot = c.plot_rect();
-  c.text_px({plot.min().x(), plot.max().y() + 62}, "base frame: x forward (up), y left (left), metres",
-            12, io::Color::hex("#333333"));
+  c.text_px({plot.min().x(), plot.max().y() + 62},
+            "base frame: x forward (up), y left (left), metres", 12, io::Color::hex("#333333"));
   io::draw_scale_bar(c);
   c.save(out);
 }

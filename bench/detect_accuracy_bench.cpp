@@ -36,15 +36,24 @@ Args parse(int argc, char** argv) {
       if (i + 1 >= argc) throw std::invalid_argument(s + ": missing value");
       return argv[++i];
     };
-    if (s == "--quick") a.quick = true;
-    else if (s == "--no-sim") a.sim = false;
-    else if (s == "--no-corn") a.corn = false;
-    else if (s == "--json") a.json = value();
-    else if (s == "--detector") a.detectors.push_back(value());
-    else if (s == "--config-dir") a.config_dir = value();
-    else if (s == "--corn-dir") a.corn_dir = value();
-    else if (s == "--corn-stride") a.corn_stride = std::stoi(value());
-    else throw std::invalid_argument("unknown argument " + s);
+    if (s == "--quick")
+      a.quick = true;
+    else if (s == "--no-sim")
+      a.sim = false;
+    else if (s == "--no-corn")
+      a.corn = false;
+    else if (s == "--json")
+      a.json = value();
+    else if (s == "--detector")
+      a.detectors.push_back(value());
+    else if (s == "--config-dir")
+      a.config_dir = value();
+    else if (s == "--corn-dir")
+      a.corn_dir = value();
+    else if (s == "--corn-stride")
+      a.corn_stride = std::stoi(value());
+    else
+      throw std::invalid_argument("unknown argument " + s);
   }
   if (a.detectors.empty()) a.detectors = io::detector_names();
   return a;

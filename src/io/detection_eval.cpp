@@ -22,7 +22,9 @@ const sim::RowTruth* find_row(const sim::GroundTruth& gt, int row) {
 
 // [deg] absolute angle between two directions taken as lines (no +-180 deg ambiguity: rows
 // are oriented forward, so a plain wrapped difference is right).
-double angle_error_deg(double a, double b) { return std::abs(core::rad2deg(core::wrap_angle(a - b))); }
+double angle_error_deg(double a, double b) {
+  return std::abs(core::rad2deg(core::wrap_angle(a - b)));
+}
 
 double mean_heading(const core::Line2& a, const core::Line2& b) {
   const Eigen::Vector2d d = a.direction + b.direction;
@@ -41,7 +43,8 @@ int count_false_rows(const core::RowObservation& obs, const sim::GroundTruth& gt
     const double xm = 0.5 * (r.x_min + r.x_max);
     const Eigen::Vector2d p(xm, y_at(r.line, xm));
     bool matched = false;
-    for (const auto& t : gt.rows) matched |= std::abs(t.line_base.signed_distance(p)) <= kMatchLateral;
+    for (const auto& t : gt.rows)
+      matched |= std::abs(t.line_base.signed_distance(p)) <= kMatchLateral;
     n += matched ? 0 : 1;
   }
   return n;
@@ -116,7 +119,8 @@ ScenarioEval evaluate_frames(detect::DetectionPipeline& pipeline, const Simulate
   double ms = 0.0;
   for (const auto& f : frames.frames) {
     const auto t0 = std::chrono::steady_clock::now();
-    const core::RowObservation obs = f.planar ? pipeline.process(f.scan) : pipeline.process(f.cloud);
+    const core::RowObservation obs =
+        f.planar ? pipeline.process(f.scan) : pipeline.process(f.cloud);
     ms += ms_since(t0);
     const FrameScore s = score_frame(obs, f.truth);
     if (!s.valid) continue;
@@ -141,7 +145,8 @@ ScenarioEval evaluate_frames(detect::DetectionPipeline& pipeline, const Simulate
 CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel& label) {
   CornFrameScore s;
   Eigen::Vector2d det_dir = Eigen::Vector2d::Zero(), lab_dir = Eigen::Vector2d::Zero();
-  for (const auto& [index, seg] : {std::pair{obs.left, &label.left}, std::pair{obs.right, &label.right}}) {
+  for (const auto& [index, seg] :
+       {std::pair{obs.left, &label.left}, std::pair{obs.right, &label.right}}) {
     core::Line2 truth = seg->line();
     if (truth.direction.x() < 0.0) truth.direction = -truth.direction;  // forward, as the rows
     for (const auto& r : obs.rows)
@@ -159,8 +164,8 @@ CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel&
     lab_dir += truth.direction;
   }
   if (det_dir.squaredNorm() > 0.0)
-    s.heading_error_deg = angle_error_deg(std::atan2(det_dir.y(), det_dir.x()),
-                                          std::atan2(lab_dir.y(), lab_dir.x()));
+    s.heading_error_deg =
+        angle_error_deg(std::atan2(det_dir.y(), det_dir.x()), std::atan2(lab_dir.y(), lab_dir.x()));
   return s;
 }
 

@@ -24,9 +24,13 @@ std::string stat_cell(const Stat& s, double scale) {
   return fmt(s.median * scale, "%.1f") + " / " + fmt(s.p95 * scale, "%.1f");
 }
 
-std::string percent(double rate) { return fmt(100.0 * rate, "%.0f") + " %"; }
+std::string percent(double rate) {
+  return fmt(100.0 * rate, "%.0f") + " %";
+}
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 
 nlohmann::json stat_json(const Stat& s) {
   return {{"n", s.n}, {"median", number(s.median)}, {"p95", number(s.p95)}};
@@ -37,13 +41,14 @@ nlohmann::json stat_json(const Stat& s) {
 std::string scenario_table_markdown(const std::vector<ScenarioEval>& results) {
   std::string out =
       "| detector | scenario | LiDAR | frames | heading error [deg] median / p95 | lateral "
-      "error [cm] median / p95 | detection rate | false rows / frame | time [ms / frame] |\n"
-      "|---|---|---|---:|---:|---:|---:|---:|---:|\n";
+      "error [cm] median / p95 | corridor rows output | detection rate | false rows / frame | time "
+      "[ms / frame] |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : results) {
     out += "| " + r.detector + " | " + r.scenario + " | " + r.lidar + " | " +
            std::to_string(r.frames) + " | " + stat_cell(r.heading_deg, 1.0) + " | " +
            stat_cell(r.lateral_m, 100.0) + (r.corridor_only ? " (centre)" : "") + " | " +
-           percent(r.detection_rate) + " | " + fmt(r.false_rows_per_frame, "%.2f") + " | " +
+           percent(r.frames ? r.lateral_m.n / (r.corridor_only ? 1.0 : 2.0) / r.frames : 0.0) +
+           " | " + percent(r.detection_rate) + " | " + fmt(r.false_rows_per_frame, "%.2f") + " | " +
            fmt(r.ms_per_frame, "%.2f") + " |\n";
   }
   return out;

@@ -61,7 +61,8 @@ std::vector<EvalScenario> standard_scenarios(bool quick) {
   orchard.crop = "orchard";
   out.push_back(orchard);
 
-  for (const auto& [name, lidar] : {std::pair{"maize_3d", "os1_16"}, std::pair{"maize_2d", "lms_1081"}}) {
+  for (const auto& [name, lidar] :
+       {std::pair{"maize_3d", "os1_16"}, std::pair{"maize_2d", "lms_1081"}}) {
     EvalScenario m;
     m.name = name;
     m.field.kind = sim::FieldKind::row_crop;

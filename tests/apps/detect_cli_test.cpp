@@ -98,7 +98,8 @@ TEST(DetectCli, FramedPointsCsvGivesOneLinePerFrame) {
   for (const int frame : {7, 9})
     for (const auto& p : scene.points) csv << frame << "," << p.x() << "," << p.y() << "\n";
   csv.close();
-  const Result r = rownav(dir.path(), "detect --detector baseline --in scans.csv --out rows.json --svg view.svg");
+  const Result r = rownav(
+      dir.path(), "detect --detector baseline --in scans.csv --out rows.json --svg view.svg");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto lines = lines_of(dir / "rows.json");
   ASSERT_EQ(lines.size(), 2u);
@@ -120,10 +121,10 @@ TEST(DetectCli, PcdCloudWithMount) {
   for (const auto& p : maize().points)
     for (const float z : {0.3f, 0.6f}) cloud.points.push_back({p.y(), -p.x(), z - 0.5f});
   io::write_cloud_pcd(dir / "frame.pcd", cloud);
-  const Result r = rownav(dir.path(),
-                          "detect --detector baseline --config '" + std::string(ROWNAV_SOURCE_DIR) +
-                              "/config/detect/row_crop.yaml' --in frame.pcd --out rows.json "
-                              "--lidar-mount 0,0,0.5,0,0,90");
+  const Result r =
+      rownav(dir.path(), "detect --detector baseline --config '" + std::string(ROWNAV_SOURCE_DIR) +
+                             "/config/detect/row_crop.yaml' --in frame.pcd --out rows.json "
+                             "--lidar-mount 0,0,0.5,0,0,90");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto lines = lines_of(dir / "rows.json");
   ASSERT_EQ(lines.size(), 1u);
@@ -139,14 +140,15 @@ TEST(DetectCli, MalformedInputIsOneErrorLine) {
   std::ofstream(dir / "ok.csv") << "1.0,0.3\n1.5,0.3\n";
   std::ofstream(dir / "bad.yaml") << "baseline:\n  y_max: -1\n";
   for (const std::string args :
-       {"--detector baseline --in bad.csv --out o.json", "--detector baseline --in bad.pcd --out o.json",
-        "--detector nope --in ok.csv --out o.json",
+       {"--detector baseline --in bad.csv --out o.json",
+        "--detector baseline --in bad.pcd --out o.json", "--detector nope --in ok.csv --out o.json",
         "--detector baseline --config bad.yaml --in ok.csv --out o.json",
         "--detector baseline --in ok.csv --out o.json --lidar-mount 1,2",
         "--detector baseline --in missing.csv --out o.json"}) {
     const Result r = rownav(dir.path(), "detect " + args);
     EXPECT_EQ(r.code, 2) << args;
-    EXPECT_TRUE(std::regex_match(r.err, std::regex("rownav: error: [^\n]+\n"))) << args << ": " << r.err;
+    EXPECT_TRUE(std::regex_match(r.err, std::regex("rownav: error: [^\n]+\n")))
+        << args << ": " << r.err;
   }
   const Result r = rownav(dir.path(), "detect --detector nope --in ok.csv --out o.json");
   EXPECT_NE(r.err.find("baseline"), std::string::npos) << r.err;
@@ -164,9 +166,11 @@ TEST(DetectCli, RecordingUsesItsMount) {
   TempDir dir;
   std::ofstream(dir / "field.yaml") << "kind: row_crop\nname: tiny\nseed: 3\nrow_crop:\n  rows: 4\n"
                                        "  row_length: 6.0\n";
-  const Result sim = rownav(dir.path(), "sim --field field.yaml --lidar lms_1081 --out rec --quiet");
+  const Result sim =
+      rownav(dir.path(), "sim --field field.yaml --lidar lms_1081 --out rec --quiet");
   ASSERT_EQ(sim.code, 0) << sim.err;
-  const Result r = rownav(dir.path(), "detect --detector baseline --in rec --out rows.json --svg v.png --svg-frame 1");
+  const Result r = rownav(
+      dir.path(), "detect --detector baseline --in rec --out rows.json --svg v.png --svg-frame 1");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto lines = lines_of(dir / "rows.json");
   ASSERT_GT(lines.size(), 2u);

@@ -56,8 +56,8 @@ TEST(BaselineDetector, FitsYOnXByLeastSquaresNotTls) {
 
 TEST(BaselineDetector, IgnoresPointsOutsideTheBoxAndInvalidPoints) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  std::vector<Eigen::Vector2f> pts = {{nan, 0.3f}, {1.0f, nan}, {-0.5f, 0.3f}, {3.0f, 0.3f},
-                                      {1.0f, 0.9f}, {1.0f, -2.0f}};
+  std::vector<Eigen::Vector2f> pts = {{nan, 0.3f},  {1.0f, nan},  {-0.5f, 0.3f},
+                                      {3.0f, 0.3f}, {1.0f, 0.9f}, {1.0f, -2.0f}};
   BaselineDetector d;
   const auto obs = d.detect(input_of(pts));
   EXPECT_EQ(obs.status, core::DetectionStatus::no_rows);

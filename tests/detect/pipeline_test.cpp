@@ -14,7 +14,8 @@ namespace {
 
 Eigen::Isometry3d mount(double x, double y, double z, double yaw_deg) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(core::deg2rad(yaw_deg), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.linear() =
+      Eigen::AngleAxisd(core::deg2rad(yaw_deg), Eigen::Vector3d::UnitZ()).toRotationMatrix();
   T.translation() = Eigen::Vector3d(x, y, z);
   return T;
 }
@@ -33,7 +34,8 @@ test::SyntheticScene maize() {
 
 // A scan in the LiDAR frame of points given in the base frame: each point goes to its beam,
 // the nearest return wins.
-core::Scan2D scan_of(const std::vector<Eigen::Vector2f>& base, const Eigen::Isometry3d& T_base_lidar) {
+core::Scan2D scan_of(const std::vector<Eigen::Vector2f>& base,
+                     const Eigen::Isometry3d& T_base_lidar) {
   core::Scan2D scan;
   scan.angle_min = -core::deg2rad(135.0);
   scan.angle_increment = core::deg2rad(0.25);
@@ -82,8 +84,8 @@ TEST(DetectionPipeline, CloudGoesToTheBaseFrameBeforeTheHeightBand) {
   for (const auto& p : scene.points)
     for (const double z : {0.05, 0.5}) {  // ground (dropped by the height band) and plants
       const Eigen::Vector3d q = T_lidar_base * Eigen::Vector3d(p.x(), p.y(), z);
-      cloud.points.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()),
-                              static_cast<float>(q.z())});
+      cloud.points.push_back(
+          {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())});
     }
   cloud.points.push_back({std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f});
   auto p = baseline_pipeline(T);

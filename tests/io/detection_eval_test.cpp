@@ -139,8 +139,9 @@ TEST(DetectionEval, TinyScenarioRunsAndReports) {
   const SimulatedFrames frames = simulate_frames(s);
   ASSERT_EQ(frames.frames.size(), 3u);
   EXPECT_TRUE(frames.frames[0].planar);
-  auto pipeline = make_pipeline("baseline", std::string(ROWNAV_SOURCE_DIR) + "/config/detect/row_crop.yaml",
-                                frames.T_base_lidar);
+  auto pipeline =
+      make_pipeline("baseline", std::string(ROWNAV_SOURCE_DIR) + "/config/detect/row_crop.yaml",
+                    frames.T_base_lidar);
   const ScenarioEval e = evaluate_frames(pipeline, frames, s);
   EXPECT_EQ(e.frames, 3);
   EXPECT_EQ(e.detector, "baseline");
@@ -157,7 +158,8 @@ TEST(DetectionEval, TinyScenarioRunsAndReports) {
 // The issue's statement on the real corn set: the baseline's median lateral error at 0.5 m is
 // ~7.8 cm and its (per-row) median heading error ~8.6 deg, and it outputs every line.
 TEST(DetectionEval, CornBaselineReproducesTheIssue) {
-  auto pipeline = make_pipeline("baseline", std::string(ROWNAV_SOURCE_DIR) + "/config/detect/row_crop.yaml");
+  auto pipeline =
+      make_pipeline("baseline", std::string(ROWNAV_SOURCE_DIR) + "/config/detect/row_crop.yaml");
   const CornEval e = evaluate_corn(pipeline, std::string(ROWNAV_SHARED_DATA) + "/corn_rows_2d");
   EXPECT_EQ(e.frames, 1630);
   EXPECT_EQ(e.lines, 3260);

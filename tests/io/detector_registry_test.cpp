@@ -44,7 +44,8 @@ TEST(DetectorRegistry, UnknownNameListsTheKnownOnes) {
 TEST(DetectorRegistry, EveryCropConfigLoadsWithEveryDetector) {
   for (const char* crop : {"vineyard", "orchard", "row_crop"})
     for (const auto& name : detector_names()) {
-      const fs::path file = fs::path(ROWNAV_SOURCE_DIR) / "config" / "detect" / (std::string(crop) + ".yaml");
+      const fs::path file =
+          fs::path(ROWNAV_SOURCE_DIR) / "config" / "detect" / (std::string(crop) + ".yaml");
       EXPECT_NO_THROW(make_pipeline(name, file)) << crop << " " << name;
     }
 }
@@ -54,12 +55,16 @@ TEST(DetectorRegistry, StrictKeysWithPositions) {
   EXPECT_NE(error_of([&] { make_pipeline("baseline", f1); }).find(":3:1:"), std::string::npos)
       << error_of([&] { make_pipeline("baseline", f1); });
   const auto f2 = write_temp("bad_key", "baseline:\n  y_maxx: 1\n");
-  EXPECT_NE(error_of([&] { make_pipeline("baseline", f2); }).find(":2:3: unknown key 'y_maxx' in 'baseline'"), std::string::npos);
+  EXPECT_NE(error_of([&] {
+              make_pipeline("baseline", f2);
+            }).find(":2:3: unknown key 'y_maxx' in 'baseline'"),
+            std::string::npos);
   const auto f3 = write_temp("bad_value", "baseline:\n  y_max: 0\n");
   const std::string e3 = error_of([&] { make_pipeline("baseline", f3); });
   EXPECT_NE(e3.find(":2:3: baseline.y_max: must be > 0"), std::string::npos) << e3;
   const auto f4 = write_temp("bad_pre", "preprocess:\n  voxel_size: -1\n");
-  EXPECT_NE(error_of([&] { make_pipeline("baseline", f4); }).find("preprocess.voxel_size"), std::string::npos);
+  EXPECT_NE(error_of([&] { make_pipeline("baseline", f4); }).find("preprocess.voxel_size"),
+            std::string::npos);
   const auto f5 = write_temp("custom", "baseline:\n  y_max: 0.5\n");
   EXPECT_NO_THROW(make_pipeline("baseline", f5));
   for (const auto& f : {f1, f2, f3, f4, f5}) fs::remove(f);

@@ -12,6 +12,7 @@
 ///   * lateral error [m]: detected left (right) row minus true left (right) row, y at x = 0,
 ///     pooled over both sides; for a corridor-only detector (rows empty, corridor set) the
 ///     corridor centre offset minus the true centre (mean of the two rows at x = 0);
+///   * corridor rows output: lateral errors scored / (2 x frames) (frames for corridor-only);
 ///   * detection rate: frames whose detected left and right rows are both within
 ///     kMatchLateral at x = 0 and kMatchHeadingDeg of the true ones (corridor-only: the centre
 ///     and heading within those), over all frames;
@@ -46,20 +47,20 @@
 
 namespace rownav::io {
 
-inline constexpr double kMatchLateral = 0.3;    ///< [m] simulated rows: match distance
-inline constexpr double kMatchHeadingDeg = 5.0; ///< [deg] simulated rows: match angle
-inline constexpr double kCornMatch = 0.2;       ///< [m] corn lines: match distance at x = 1 m
+inline constexpr double kMatchLateral = 0.3;     ///< [m] simulated rows: match distance
+inline constexpr double kMatchHeadingDeg = 5.0;  ///< [deg] simulated rows: match angle
+inline constexpr double kCornMatch = 0.2;        ///< [m] corn lines: match distance at x = 1 m
 
 /// One simulated test case: a field, a sensor and robot poses in its corridors.
 struct EvalScenario {
   std::string name;
   sim::FieldConfig field;
-  std::string lidar_preset = "os1_16";  ///< sim::lidar_preset name
-  int frames = 20;                      ///< [-] robot poses (one LiDAR frame each)
-  std::uint64_t seed = 1;               ///< poses and sensor noise
-  double max_lateral = 0.3;             ///< [m] uniform offset from the corridor centre, +-
-  double max_heading_deg = 8.0;         ///< [deg] uniform heading offset from the corridor, +-
-  std::string crop = "vineyard";  ///< detection config to use: config/detect/<crop>.yaml
+  std::string lidar_preset = "os1_16";       ///< sim::lidar_preset name
+  int frames = 20;                           ///< [-] robot poses (one LiDAR frame each)
+  std::uint64_t seed = 1;                    ///< poses and sensor noise
+  double max_lateral = 0.3;                  ///< [m] uniform offset from the corridor centre, +-
+  double max_heading_deg = 8.0;              ///< [deg] uniform heading offset from the corridor, +-
+  std::string crop = "vineyard";             ///< detection config to use: config/detect/<crop>.yaml
   std::optional<Eigen::Vector3d> mount_xyz;  ///< [m] overrides the preset's LiDAR mount
 };
 
@@ -111,7 +112,7 @@ struct ScenarioEval {
   int frames = 0;              ///< frames scored (truth with both corridor rows)
   bool corridor_only = false;  ///< lateral is the corridor centre's
   Stat heading_deg, lateral_m;
-  double detection_rate = 0.0;       ///< [0, 1]
+  double detection_rate = 0.0;  ///< [0, 1]
   double false_rows_per_frame = 0.0;
   double ms_per_frame = 0.0;  ///< [ms] pipeline time (preprocessing + detection), wall clock
 };
@@ -123,8 +124,8 @@ struct CornFrameScore {
   std::vector<double> lateral_05, lateral_15;  ///< [m] per detected labelled side
   std::optional<double> heading_error_deg;
   std::vector<double> row_heading_deg;  ///< [deg] per detected labelled side
-  int lines_detected = 0;  ///< of the 2 labelled lines
-  int lines_output = 0;    ///< labelled sides with a detected left / right row
+  int lines_detected = 0;               ///< of the 2 labelled lines
+  int lines_output = 0;                 ///< labelled sides with a detected left / right row
 };
 CornFrameScore score_corn_frame(const core::RowObservation& obs, const RowLabel& label);
 
@@ -146,7 +147,8 @@ CornEval evaluate_corn(detect::DetectionPipeline& pipeline, const std::filesyste
 std::string scenario_table_markdown(const std::vector<ScenarioEval>& results);
 std::string corn_table_markdown(const std::vector<CornEval>& results);
 /// Both result sets as one JSON document {"simulated": [...], "corn": [...]}, NaN as null.
-std::string eval_json(const std::vector<ScenarioEval>& simulated, const std::vector<CornEval>& corn);
+std::string eval_json(const std::vector<ScenarioEval>& simulated,
+                      const std::vector<CornEval>& corn);
 /// Writes eval_json to `file`; std::runtime_error when it cannot be written.
 void write_eval_json(const std::filesystem::path& file, const std::vector<ScenarioEval>& simulated,
                      const std::vector<CornEval>& corn);
