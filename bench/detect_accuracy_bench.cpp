@@ -4,6 +4,7 @@
 //
 //   build/detect_accuracy_bench [--quick] [--json out.json] [--detector NAME]...
 //                               [--config-dir DIR] [--corn-stride N] [--no-sim] [--no-corn]
+// Google Benchmark flags (--benchmark_*, as `make bench` passes) are ignored.
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -36,6 +37,7 @@ Args parse(int argc, char** argv) {
       if (i + 1 >= argc) throw std::invalid_argument(s + ": missing value");
       return argv[++i];
     };
+    if (s.rfind("--benchmark", 0) == 0) continue;  // `make bench` passes Google Benchmark flags
     if (s == "--quick")
       a.quick = true;
     else if (s == "--no-sim")
