@@ -70,7 +70,8 @@ std::unique_ptr<detect::RowDetector> make_detector(const std::string& name,
                                                    const std::string& file) {
   for (const auto& e : registry())
     if (e.name == name) return e.make(section, file, name);
-  throw InputError(file.empty() ? "--detector" : file, "",
+  (void)file;  // the name is at fault, not the file
+  throw InputError("--detector", "",
                    "unknown detector '" + name + "' (known: " + known_names() + ")");
 }
 
@@ -91,6 +92,10 @@ detect::DetectionPipeline make_pipeline(const std::string& name,
   };
   decode_section(section("preprocess"), pre, file, "preprocess");
   auto detector = make_detector(name, section(name), file);
+  // The other sections are checked too: a typo there is reported even when unused.
+  for (const auto& e : registry())
+    if (e.name != name && section(std::string(e.name)))
+      e.make(section(std::string(e.name)), file, std::string(e.name));
   return {pre, std::move(detector), T_base_lidar};
 }
 

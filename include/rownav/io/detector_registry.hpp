@@ -5,8 +5,8 @@
 /// A detection config file (config/detect/<crop>.yaml) is a map with an optional `preprocess:`
 /// section (preprocess::PreprocessConfig) and one optional section per detector, named as the
 /// detector (its Config). Keys are strict (io::decode_config); an absent section keeps the
-/// defaults. Only the section of the detector in use is decoded, but every section name must be
-/// a known detector.
+/// defaults. Every section is checked (the other detectors' too), every section name must be a
+/// known detector.
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
@@ -23,8 +23,8 @@ namespace rownav::io {
 /// Names of the registered detectors, in registration order.
 std::vector<std::string> detector_names();
 
-/// Builds detector `name` from its config section (null node: defaults). InputError
-/// "<file>: unknown detector 'x' (known: a, b)" for an unknown name, or at the offending key.
+/// Builds detector `name` from its config section (null node: defaults) of `file`. InputError
+/// "--detector: unknown detector 'x' (known: a, b)" for an unknown name, or at the offending key.
 std::unique_ptr<detect::RowDetector> make_detector(const std::string& name,
                                                    const YAML::Node& section,
                                                    const std::string& file);
