@@ -1,0 +1,50 @@
+#pragma once
+/// @file pipeline.hpp One LiDAR frame to a RowObservation: LiDAR frame -> base frame (the mount),
+/// the preprocessing chain, then a row detector.
+#include <Eigen/Geometry>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "rownav/core/point_cloud.hpp"
+#include "rownav/core/row_observation.hpp"
+#include "rownav/core/scan2d.hpp"
+#include "rownav/detect/row_detector.hpp"
+#include "rownav/preprocess/preprocessor.hpp"
+
+namespace rownav::detect {
+
+/// Planar part of a 3D mount: x, y and yaw of T_base_lidar (a 2D scanner is assumed level).
+Eigen::Isometry2d planar_mount(const Eigen::Isometry3d& T_base_lidar);
+
+/// Preprocessing + detection of one frame. Not thread-safe (buffers, detector state).
+class DetectionPipeline {
+ public:
+  /// Throws std::invalid_argument for an invalid PreprocessConfig or a null detector.
+  DetectionPipeline(preprocess::PreprocessConfig config, std::unique_ptr<RowDetector> detector,
+                    const Eigen::Isometry3d& T_base_lidar = Eigen::Isometry3d::Identity());
+
+  /// A 3D sweep in the LiDAR frame. Never throws.
+  core::RowObservation process(const core::PointCloud& cloud_lidar);
+  /// A planar scan in the LiDAR frame; the mount is applied in the plane (x, y, yaw). Never
+  /// throws.
+  core::RowObservation process(const core::Scan2D& scan_lidar);
+  /// 2D points already in the base frame (x forward, y left, metres). Never throws.
+  core::RowObservation process_points(std::span<const Eigen::Vector2f> points_base, double stamp);
+
+  const RowDetector& detector() const { return *detector_; }
+  const Eigen::Isometry3d& T_base_lidar() const { return T_base_lidar_; }
+  /// Points handed to the detector in the last frame (base frame, after preprocessing).
+  const std::vector<Eigen::Vector2f>& last_points() const { return last_points_; }
+
+ private:
+  core::RowObservation detect(double stamp);
+
+  preprocess::Preprocessor preprocessor_;
+  std::unique_ptr<RowDetector> detector_;
+  Eigen::Isometry3d T_base_lidar_;
+  core::PointCloud cloud_base_;
+  std::vector<Eigen::Vector2f> points_base_, last_points_;
+};
+
+}  // namespace rownav::detect

@@ -1,0 +1,75 @@
+#include "rownav/detect/pipeline.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rownav::detect {
+
+Eigen::Isometry2d planar_mount(const Eigen::Isometry3d& T_base_lidar) {
+  const Eigen::Matrix3d R = T_base_lidar.linear();
+  Eigen::Isometry2d T = Eigen::Isometry2d::Identity();
+  T.linear() = Eigen::Rotation2Dd(std::atan2(R(1, 0), R(0, 0))).toRotationMatrix();
+  T.translation() = T_base_lidar.translation().head<2>();
+  return T;
+}
+
+DetectionPipeline::DetectionPipeline(preprocess::PreprocessConfig config,
+                                     std::unique_ptr<RowDetector> detector,
+                                     const Eigen::Isometry3d& T_base_lidar)
+    : preprocessor_(config), detector_(std::move(detector)), T_base_lidar_(T_base_lidar) {
+  if (!detector_) throw std::invalid_argument("DetectionPipeline: no detector");
+}
+
+core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_lidar) {
+  cloud_base_.stamp = cloud_lidar.stamp;
+  cloud_base_.frame_id = "base";
+  cloud_base_.has_intensity = cloud_lidar.has_intensity;
+  cloud_base_.has_ring = cloud_lidar.has_ring;
+  cloud_base_.has_time = cloud_lidar.has_time;
+  cloud_base_.points.resize(cloud_lidar.points.size());
+  const Eigen::Isometry3f T = T_base_lidar_.cast<float>();
+  for (std::size_t i = 0; i < cloud_lidar.points.size(); ++i) {
+    auto q = cloud_lidar.points[i];
+    const Eigen::Vector3f p = T * Eigen::Vector3f(q.x, q.y, q.z);  // NaN stays NaN: dropped later
+    q.x = p.x();
+    q.y = p.y();
+    q.z = p.z();
+    cloud_base_.points[i] = q;
+  }
+  preprocessor_.run(cloud_base_);
+  return detect(cloud_lidar.stamp);
+}
+
+core::RowObservation DetectionPipeline::process(const core::Scan2D& scan_lidar) {
+  const Eigen::Isometry2f T = planar_mount(T_base_lidar_).cast<float>();
+  points_base_.clear();
+  for (std::size_t i = 0; i < scan_lidar.ranges.size(); ++i) {
+    if (!scan_lidar.valid(i)) continue;
+    const double a = scan_lidar.angle(i);
+    const float r = scan_lidar.ranges[i];
+    points_base_.push_back(T * Eigen::Vector2f(r * static_cast<float>(std::cos(a)),
+                                               r * static_cast<float>(std::sin(a))));
+  }
+  preprocessor_.run(std::span<const Eigen::Vector2f>(points_base_));
+  return detect(scan_lidar.stamp);
+}
+
+core::RowObservation DetectionPipeline::process_points(std::span<const Eigen::Vector2f> points_base,
+                                                       double stamp) {
+  preprocessor_.run(points_base);
+  return detect(stamp);
+}
+
+core::RowObservation DetectionPipeline::detect(double stamp) {
+  try {
+    const DetectorInput input = preprocessor_.input(stamp);
+    last_points_ = input.points;
+    return detector_->detect(input);
+  } catch (...) {  // out of memory only: detectors do not throw; report an empty frame
+    core::RowObservation none;
+    none.stamp = stamp;
+    return none;
+  }
+}
+
+}  // namespace rownav::detect
