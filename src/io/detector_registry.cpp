@@ -5,6 +5,10 @@
 #include <string_view>
 
 #include "rownav/detect/baseline.hpp"
+#include "rownav/detect/cluster_rows.hpp"
+#include "rownav/detect/cone_rect.hpp"
+#include "rownav/detect/hough_skew.hpp"
+#include "rownav/detect/parallel_lines.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/yaml_config.hpp"
 
@@ -47,6 +51,10 @@ struct Entry {
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> entries = {
       {"baseline", creator<detect::BaselineDetector>()},
+      {"hough_skew", creator<detect::HoughSkewDetector, detect::HoughSkewConfig>()},
+      {"parallel_lines", creator<detect::ParallelLinesDetector, detect::ParallelLinesConfig>()},
+      {"cluster_rows", creator<detect::ClusterRowsDetector, detect::ClusterRowsConfig>()},
+      {"cone_rect", creator<detect::ConeRectDetector, detect::ConeRectConfig>()},
   };
   return entries;
 }

@@ -53,8 +53,11 @@ core::Scan2D scan_of(const std::vector<Eigen::Vector2f>& base,
   return scan;
 }
 
+// No voxel grid, so every kept point can be counted.
 DetectionPipeline baseline_pipeline(const Eigen::Isometry3d& T) {
-  return {preprocess::PreprocessConfig{}, std::make_unique<BaselineDetector>(), T};
+  preprocess::PreprocessConfig pre;
+  pre.voxel.voxel_size = 0.0;
+  return {pre, std::make_unique<BaselineDetector>(), T};
 }
 
 TEST(DetectionPipeline, ScanMountYawIsUndone) {

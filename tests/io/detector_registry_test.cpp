@@ -62,8 +62,8 @@ TEST(DetectorRegistry, StrictKeysWithPositions) {
   const auto f3 = write_temp("bad_value", "baseline:\n  y_max: 0\n");
   const std::string e3 = error_of([&] { make_pipeline("baseline", f3); });
   EXPECT_NE(e3.find(":2:3: baseline.y_max: must be > 0"), std::string::npos) << e3;
-  const auto f4 = write_temp("bad_pre", "preprocess:\n  voxel_size: -1\n");
-  EXPECT_NE(error_of([&] { make_pipeline("baseline", f4); }).find("preprocess.voxel_size"),
+  const auto f4 = write_temp("bad_pre", "preprocess:\n  voxel:\n    voxel_size: -1\n");
+  EXPECT_NE(error_of([&] { make_pipeline("baseline", f4); }).find("preprocess.voxel.voxel_size"),
             std::string::npos);
   const auto f5 = write_temp("custom", "baseline:\n  y_max: 0.5\n");
   EXPECT_NO_THROW(make_pipeline("baseline", f5));
