@@ -74,6 +74,20 @@ void update_models(const PearlConfig& cfg, const Points& pts, double outlier_cos
   merge_models(pts, cfg, labels, models);
 }
 
+/// The returned set L_{i-1} goes through the deterministic steps of its variant once more
+/// (label cost, elimination, eq. (3), parallelism, merge): eq. (1) alone prefers two lines along
+/// the edges of a wide canopy and short fragments sharing a row; the merge and the label cost
+/// make them one row (sec. 2.1.3).
+void finish_models(const PearlConfig& cfg, const Points& pts, double outlier_cost,
+                   std::vector<int>& labels, std::vector<Model>& models) {
+  for (auto& m : models) m.fresh = false;
+  if (cfg.variant != PearlVariant::pearl) eliminate_small(cfg, labels, models);
+  apply_label_cost(pts, cfg, outlier_cost, labels, models);
+  refit_models(pts, labels, models);
+  if (cfg.variant == PearlVariant::ruby) parallel_constraint(pts, cfg, labels, models);
+  merge_models(pts, cfg, labels, models);
+}
+
 /// The reported rows: every model with enough support heading along the robot.
 core::RowObservation make_observation(const PearlConfig& cfg, const Points& pts, double stamp,
                                       const std::vector<int>& labels,
@@ -145,6 +159,7 @@ core::RowObservation PearlDetector::detect(const DetectorInput& input) {
     update_models(cfg, st.pts, outlier_cost, rng, st.labels, models);
   }
   last_energy_ = std::isfinite(best_energy) ? best_energy : 0.0;
+  finish_models(cfg, st.pts, outlier_cost, best_labels, best_models);
   return make_observation(cfg, st.pts, input.stamp, best_labels, best_models);
 }
 

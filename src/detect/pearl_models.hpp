@@ -50,8 +50,8 @@ void remove_models(const std::vector<bool>& drop, std::vector<int>& labels,
 /// Model elimination (sec. 2.2.2): models with fewer than min_support points.
 void eliminate_small(const PearlConfig& cfg, std::vector<int>& labels, std::vector<Model>& models);
 
-/// Label cost h (Isack & Boykov 2012), greedily: drop a model whose points gain less than h
-/// over L_0 in data cost. Empty models are always dropped.
+/// Label cost h (Isack & Boykov 2012), greedily: drop a model when moving its points to their
+/// best other label (model or L_0) raises the data cost by less than h. Empty models go too.
 void apply_label_cost(const Points& pts, const PearlConfig& cfg, double outlier_cost,
                       std::vector<int>& labels, std::vector<Model>& models);
 

@@ -95,16 +95,20 @@ void eliminate_small(const PearlConfig& cfg, std::vector<int>& labels, std::vect
 
 void apply_label_cost(const Points& pts, const PearlConfig& cfg, double outlier_cost,
                       std::vector<int>& labels, std::vector<Model>& models) {
-  std::vector<double> gain(models.size(), 0.0);
+  // Data-cost increase of deleting label j: its points move to their best other label.
+  std::vector<double> loss(models.size(), 0.0);
   std::vector<int> count(models.size(), 0);
   for (std::size_t p = 0; p < labels.size(); ++p) {
     if (labels[p] <= 0) continue;
     const auto j = static_cast<std::size_t>(labels[p] - 1);
-    gain[j] += outlier_cost - distance_to(models[j].line, pts[p]);
+    double alternative = outlier_cost;
+    for (std::size_t k = 0; k < models.size(); ++k)
+      if (k != j) alternative = std::min(alternative, distance_to(models[k].line, pts[p]));
+    loss[j] += alternative - distance_to(models[j].line, pts[p]);
     ++count[j];
   }
   std::vector<bool> drop(models.size());
-  for (std::size_t j = 0; j < models.size(); ++j) drop[j] = count[j] == 0 || gain[j] < cfg.label_cost;
+  for (std::size_t j = 0; j < models.size(); ++j) drop[j] = count[j] == 0 || loss[j] < cfg.label_cost;
   remove_models(drop, labels, models);
 }
 

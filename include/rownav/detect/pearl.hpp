@@ -41,7 +41,7 @@ struct PearlConfig {
   PearlVariant variant = PearlVariant::ruby;
   /// [m] cost of the outlier label L_0 = the distance threshold beyond which a point is an
   /// outlier (Malavazi 2018 sec. 2.1.2 step 2 "further than a threshold").
-  double outlier_cost = 0.12;
+  double outlier_cost = 0.18;
   /// [m] phi of eq. (4): extra energy per outlier point (sec. 2.2.1); opal / ruby only.
   double outlier_penalty = 0.03;
   /// [m] lambda of eq. (1): weight of the Potts smoothness term.
@@ -53,8 +53,9 @@ struct PearlConfig {
   /// [m] pairs farther apart than this are not neighbours.
   double neighbour_radius = 0.3;
   /// [m] label cost h per line model (Isack & Boykov 2012; not in Malavazi's eq. (1)): after
-  /// each expansion a model is dropped when its points' data-cost gain over L_0 is below h.
-  double label_cost = 0.4;
+  /// each expansion a model is dropped when moving its points to their best other label raises
+  /// the data cost by less than h (about 20 points of a 1 m row segment keep their model).
+  double label_cost = 1.5;
   /// [-] models sampled at initialisation (sec. 2.1.2 step 1, "number of initial models").
   int initial_models = 12;
   /// [-] models sampled from the outliers per iteration (sec. 2.1.2 step 5 / sec. 2.2.3).
@@ -73,7 +74,7 @@ struct PearlConfig {
   int min_support = 8;
   /// [deg] models closer than this in angle and `merge_distance` across are merged (step 5).
   double merge_angle_deg = 6.0;
-  double merge_distance = 0.15;  ///< [m]
+  double merge_distance = 0.3;  ///< [m] also applied to the returned models
   /// [-] |a_j - a_k| below this makes two models parallel, a = slope (eq. (5)); ruby only.
   double parallel_slope = 0.1;
   /// [-] omega of R_j = omega D_j / psi_j (sec. 2.2.4); ruby only.
