@@ -27,6 +27,7 @@ void PearlConfig::validate() const {
   core::check(sample_max > sample_min, "sample_max", "must be > sample_min");
   core::check_positive(max_iterations, "max_iterations");
   core::check_positive(expansion_cycles, "expansion_cycles");
+  core::check_positive(stall_iterations, "stall_iterations");
   core::check_range(min_support, 2, 100000, "min_support");
   core::check_range(merge_angle_deg, 0.0, 90.0, "merge_angle_deg");
   core::check_non_negative(merge_distance, "merge_distance");
@@ -75,7 +76,7 @@ void update_models(const PearlConfig& cfg, const Points& pts, double outlier_cos
 }
 
 /// The returned set L_{i-1} goes through the deterministic steps of its variant once more
-/// (label cost, elimination, eq. (3), parallelism, merge): eq. (1) alone prefers two lines along
+/// (elimination, label cost, eq. (3), merge): eq. (1) alone prefers two lines along
 /// the edges of a wide canopy and short fragments sharing a row; the merge and the label cost
 /// make them one row (sec. 2.1.3).
 void finish_models(const PearlConfig& cfg, const Points& pts, double outlier_cost,
@@ -84,7 +85,8 @@ void finish_models(const PearlConfig& cfg, const Points& pts, double outlier_cos
   if (cfg.variant != PearlVariant::pearl) eliminate_small(cfg, labels, models);
   apply_label_cost(pts, cfg, outlier_cost, labels, models);
   refit_models(pts, labels, models);
-  if (cfg.variant == PearlVariant::ruby) parallel_constraint(pts, cfg, labels, models);
+  // No parallelism pass here: on corn_rows_2d it removed 10 % of the labelled rows (two visible
+  // rows that disagree in slope leave psi_j = 0); the paper applies it inside the loop only.
   merge_models(pts, cfg, labels, models);
 }
 
@@ -147,15 +149,20 @@ core::RowObservation PearlDetector::detect(const DetectorInput& input) {
   double best_energy = std::numeric_limits<double>::infinity();
   std::vector<Model> best_models;
   std::vector<int> best_labels(st.labels);
+  int stalled = 0;
   for (int it = 0; it < cfg.max_iterations && !models.empty(); ++it) {
     fill_data_costs(st.pts, models, outlier_cost, st.problem);
     st.expansion.run(st.problem, st.labels, cfg.expansion_cycles);  // step 2
     const double e = total_energy(st.problem, st.labels, models.size(), cfg.label_cost);
     ++last_iterations_;
-    if (!(e < best_energy - 1e-9)) break;  // step 3: return the previous models
-    best_energy = e;
-    best_models = models;
-    best_labels = st.labels;
+    if (e < best_energy - 1e-9) {
+      stalled = 0;
+      best_energy = e;
+      best_models = models;
+      best_labels = st.labels;
+    } else if (++stalled >= cfg.stall_iterations) {
+      break;  // step 3: return the best (previous) models
+    }
     update_models(cfg, st.pts, outlier_cost, rng, st.labels, models);
   }
   last_energy_ = std::isfinite(best_energy) ? best_energy : 0.0;

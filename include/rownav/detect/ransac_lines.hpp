@@ -14,7 +14,8 @@ namespace rownav::detect {
 /// the synthetic scenes, the simulated vineyard and corn_rows_2d.
 struct RansacLinesConfig {
   int iterations = 100;           ///< [-] hypotheses per extracted line
-  double inlier_distance = 0.08;  ///< [m] |point-to-line| below which a point is an inlier
+  double inlier_distance = 0.15;  ///< [m] |point-to-line| below which a point is an inlier
+                                  ///< (about the canopy half width)
   int min_inliers = 12;           ///< [-] a line needs this many inliers; fewer ends the search
   int max_lines = 6;              ///< [-] lines extracted at most
   double sample_min = 0.25;       ///< [m] the two sample points are at least this far apart
