@@ -46,6 +46,14 @@ struct AlphaExpansion::Impl {
   std::vector<double> unary;       // per node: cost(switch) - cost(keep)
   std::vector<double> incident;    // per point: sum of incident Potts weights
   std::vector<int> proposal;
+  Graph graph;  // reused: vertices kept, out-edge lists cleared between moves
+
+  /// Empties the graph's edges and makes sure it has at least n vertices.
+  Graph& reset_graph(std::size_t n) {
+    for (std::size_t v = 0; v < boost::num_vertices(graph); ++v) boost::clear_out_edges(v, graph);
+    while (boost::num_vertices(graph) < n) boost::add_vertex(graph);
+    return graph;
+  }
 
   void add_pair(Graph& g, int u, int v, double cap_uv, double cap_vu) {
     const auto e = boost::add_edge(static_cast<std::size_t>(u), static_cast<std::size_t>(v), g).first;
@@ -123,7 +131,7 @@ bool AlphaExpansion::expand(const LabelingProblem& problem, int alpha, std::vect
   im.select_nodes(problem, alpha, labels);
   if (im.point_of.empty()) return false;
   const auto m = im.point_of.size();
-  Graph g(m + 2);
+  Graph& g = im.reset_graph(m + 2);
   im.build(problem, alpha, labels, g);
   boost::boykov_kolmogorov_max_flow(g, boost::get(&EdgeProps::cap, g), boost::get(&EdgeProps::res, g),
                                     boost::get(&EdgeProps::rev, g), boost::get(&VertexProps::pred, g),
