@@ -45,7 +45,10 @@ const std::vector<Eigen::Vector2f>& frame_points() {
     const core::Pose2 pose(a.x(), a.y(), std::atan2(b.y() - a.y(), b.x() - a.x()));
     const Eigen::Isometry3d T = pose.to_isometry();
     std::vector<Eigen::Vector2f> base;
-    for (const auto& p : lidar.scan(world, [&](double) { return T; }, 0.0).to_points())
+    for (const auto& p : lidar
+                             .scan(
+                                 world, [&](double) { return T; }, 0.0)
+                             .to_points())
       base.emplace_back(p.x() + 0.3f, p.y());
     preprocess::PreprocessConfig pc;
     pc.x_min = 0.0;
@@ -73,9 +76,15 @@ void run_pearl(benchmark::State& state, detect::PearlVariant v) {
   state.counters["iterations"] = det.last_iterations();
 }
 
-void BM_Ruby(benchmark::State& s) { run_pearl(s, detect::PearlVariant::ruby); }
-void BM_Opal(benchmark::State& s) { run_pearl(s, detect::PearlVariant::opal); }
-void BM_Pearl(benchmark::State& s) { run_pearl(s, detect::PearlVariant::pearl); }
+void BM_Ruby(benchmark::State& s) {
+  run_pearl(s, detect::PearlVariant::ruby);
+}
+void BM_Opal(benchmark::State& s) {
+  run_pearl(s, detect::PearlVariant::opal);
+}
+void BM_Pearl(benchmark::State& s) {
+  run_pearl(s, detect::PearlVariant::pearl);
+}
 
 void BM_RansacLines(benchmark::State& state) {
   detect::RansacLinesDetector det;

@@ -25,26 +25,30 @@ struct EdgeProps {
   Traits::edge_descriptor rev;
 };
 
-using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS, VertexProps,
-                                    EdgeProps>;
+using Graph =
+    boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS, VertexProps, EdgeProps>;
 
-double potts(int a, int b, double w) { return a == b ? 0.0 : w; }
+double potts(int a, int b, double w) {
+  return a == b ? 0.0 : w;
+}
 
 }  // namespace
 
 double labeling_energy(const LabelingProblem& problem, std::span<const int> labels) {
   double e = 0.0;
-  for (int p = 0; p < problem.num_points; ++p) e += problem.cost(p, labels[static_cast<std::size_t>(p)]);
+  for (int p = 0; p < problem.num_points; ++p)
+    e += problem.cost(p, labels[static_cast<std::size_t>(p)]);
   for (const auto& ed : problem.edges)
-    e += potts(labels[static_cast<std::size_t>(ed.p)], labels[static_cast<std::size_t>(ed.q)], ed.w);
+    e +=
+        potts(labels[static_cast<std::size_t>(ed.p)], labels[static_cast<std::size_t>(ed.q)], ed.w);
   return e;
 }
 
 struct AlphaExpansion::Impl {
-  std::vector<int> node_of;        // point -> graph node, -1 when the point's move is fixed
-  std::vector<int> point_of;       // graph node -> point
-  std::vector<double> unary;       // per node: cost(switch) - cost(keep)
-  std::vector<double> incident;    // per point: sum of incident Potts weights
+  std::vector<int> node_of;      // point -> graph node, -1 when the point's move is fixed
+  std::vector<int> point_of;     // graph node -> point
+  std::vector<double> unary;     // per node: cost(switch) - cost(keep)
+  std::vector<double> incident;  // per point: sum of incident Potts weights
   std::vector<int> proposal;
   Graph graph;  // reused: vertices kept, out-edge lists cleared between moves
 
@@ -56,8 +60,10 @@ struct AlphaExpansion::Impl {
   }
 
   void add_pair(Graph& g, int u, int v, double cap_uv, double cap_vu) {
-    const auto e = boost::add_edge(static_cast<std::size_t>(u), static_cast<std::size_t>(v), g).first;
-    const auto r = boost::add_edge(static_cast<std::size_t>(v), static_cast<std::size_t>(u), g).first;
+    const auto e =
+        boost::add_edge(static_cast<std::size_t>(u), static_cast<std::size_t>(v), g).first;
+    const auto r =
+        boost::add_edge(static_cast<std::size_t>(v), static_cast<std::size_t>(u), g).first;
     g[e].cap = cap_uv;
     g[r].cap = cap_vu;
     g[e].rev = r;
@@ -93,10 +99,12 @@ struct AlphaExpansion::Impl {
     unary.assign(static_cast<std::size_t>(m), 0.0);
     for (int i = 0; i < m; ++i) {
       const int p = point_of[static_cast<std::size_t>(i)];
-      unary[static_cast<std::size_t>(i)] = pr.cost(p, alpha) - pr.cost(p, f[static_cast<std::size_t>(p)]);
+      unary[static_cast<std::size_t>(i)] =
+          pr.cost(p, alpha) - pr.cost(p, f[static_cast<std::size_t>(p)]);
     }
     for (const auto& e : pr.edges) {
-      const int np = node_of[static_cast<std::size_t>(e.p)], nq = node_of[static_cast<std::size_t>(e.q)];
+      const int np = node_of[static_cast<std::size_t>(e.p)],
+                nq = node_of[static_cast<std::size_t>(e.q)];
       if (np < 0 && nq < 0) continue;
       const int fp = f[static_cast<std::size_t>(e.p)], fq = f[static_cast<std::size_t>(e.q)];
       if (np < 0 || nq < 0) {  // one end fixed at its current label
@@ -116,8 +124,10 @@ struct AlphaExpansion::Impl {
     const int s = m, t = m + 1;
     for (int i = 0; i < m; ++i) {
       const double u = unary[static_cast<std::size_t>(i)];
-      if (u > 0.0) add_pair(g, s, i, u, 0.0);       // paid when i goes to the sink (switch)
-      else if (u < 0.0) add_pair(g, i, t, -u, 0.0);  // paid when i stays at the source (keep)
+      if (u > 0.0)
+        add_pair(g, s, i, u, 0.0);  // paid when i goes to the sink (switch)
+      else if (u < 0.0)
+        add_pair(g, i, t, -u, 0.0);  // paid when i stays at the source (keep)
     }
   }
 };
@@ -133,11 +143,11 @@ bool AlphaExpansion::expand(const LabelingProblem& problem, int alpha, std::vect
   const auto m = im.point_of.size();
   Graph& g = im.reset_graph(m + 2);
   im.build(problem, alpha, labels, g);
-  boost::boykov_kolmogorov_max_flow(g, boost::get(&EdgeProps::cap, g), boost::get(&EdgeProps::res, g),
-                                    boost::get(&EdgeProps::rev, g), boost::get(&VertexProps::pred, g),
-                                    boost::get(&VertexProps::color, g),
-                                    boost::get(&VertexProps::dist, g), boost::get(boost::vertex_index, g),
-                                    m, m + 1);
+  boost::boykov_kolmogorov_max_flow(
+      g, boost::get(&EdgeProps::cap, g), boost::get(&EdgeProps::res, g),
+      boost::get(&EdgeProps::rev, g), boost::get(&VertexProps::pred, g),
+      boost::get(&VertexProps::color, g), boost::get(&VertexProps::dist, g),
+      boost::get(boost::vertex_index, g), m, m + 1);
   im.proposal = labels;
   bool any = false;
   for (std::size_t i = 0; i < m; ++i) {

@@ -123,7 +123,9 @@ PearlDetector::PearlDetector(const PearlConfig& config)
 
 PearlDetector::~PearlDetector() = default;
 
-std::string_view PearlDetector::name() const { return core::enum_name(config_.variant); }
+std::string_view PearlDetector::name() const {
+  return core::enum_name(config_.variant);
+}
 
 core::RowObservation PearlDetector::detect(const DetectorInput& input) {
   PearlState& st = *state_;

@@ -19,8 +19,9 @@ struct CloudAdaptor {
   }
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>,
-                                                   CloudAdaptor, 2>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>,
+                                        CloudAdaptor, 2>;
 
 double distance_to(const core::Line2& l, const Eigen::Vector2f& p) {
   return std::abs(l.signed_distance(p.cast<double>()));
@@ -70,7 +71,8 @@ void fill_data_costs(const Points& pts, const std::vector<Model>& models, double
   for (std::size_t p = 0; p < pts.size(); ++p) {
     double* row = problem.data_cost.data() + p * static_cast<std::size_t>(labels);
     row[0] = outlier_cost;
-    for (std::size_t j = 0; j < models.size(); ++j) row[j + 1] = distance_to(models[j].line, pts[p]);
+    for (std::size_t j = 0; j < models.size(); ++j)
+      row[j + 1] = distance_to(models[j].line, pts[p]);
   }
 }
 

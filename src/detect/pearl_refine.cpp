@@ -108,7 +108,8 @@ void apply_label_cost(const Points& pts, const PearlConfig& cfg, double outlier_
     ++count[j];
   }
   std::vector<bool> drop(models.size());
-  for (std::size_t j = 0; j < models.size(); ++j) drop[j] = count[j] == 0 || loss[j] < cfg.label_cost;
+  for (std::size_t j = 0; j < models.size(); ++j)
+    drop[j] = count[j] == 0 || loss[j] < cfg.label_cost;
   remove_models(drop, labels, models);
 }
 
@@ -122,7 +123,8 @@ void merge_models(const Points& pts, const PearlConfig& cfg, std::vector<int>& l
       const auto& a = models[i].line;
       const auto& b = models[j].line;
       const double angle = std::acos(std::min(1.0, std::abs(a.direction.dot(b.direction))));
-      const double across = std::max(std::abs(a.signed_distance(b.point)), std::abs(b.signed_distance(a.point)));
+      const double across =
+          std::max(std::abs(a.signed_distance(b.point)), std::abs(b.signed_distance(a.point)));
       if (angle > max_angle || across > cfg.merge_distance) continue;
       for (auto& l : labels)
         if (l == static_cast<int>(j) + 1) l = static_cast<int>(i) + 1;
@@ -154,8 +156,10 @@ void parallel_constraint(const Points& pts, const PearlConfig& cfg, std::vector<
     inertia[j] /= count[j];
     int psi = 0;  // psi_j: models parallel to L_j, eq. (5)
     for (std::size_t k = 0; k < n; ++k)
-      if (k != j && std::abs(slope(models[j].line) - slope(models[k].line)) < cfg.parallel_slope) ++psi;
-    ratio[j] = psi > 0 ? cfg.parallel_omega * inertia[j] / psi : std::numeric_limits<double>::infinity();
+      if (k != j && std::abs(slope(models[j].line) - slope(models[k].line)) < cfg.parallel_slope)
+        ++psi;
+    ratio[j] =
+        psi > 0 ? cfg.parallel_omega * inertia[j] / psi : std::numeric_limits<double>::infinity();
     const bool better = best == n || ratio[j] < ratio[best] ||
                         (ratio[j] == ratio[best] && inertia[j] < inertia[best]);
     if (better) best = j;

@@ -53,8 +53,10 @@ void take_inliers(const core::Line2& line, double tol, std::vector<Eigen::Vector
   out.clear();
   std::size_t keep = 0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (std::abs(line.signed_distance(pts[i].cast<double>())) < tol) out.push_back(pts[i]);
-    else pts[keep++] = pts[i];
+    if (std::abs(line.signed_distance(pts[i].cast<double>())) < tol)
+      out.push_back(pts[i]);
+    else
+      pts[keep++] = pts[i];
   }
   pts.resize(keep);
 }

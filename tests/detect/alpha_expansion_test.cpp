@@ -118,14 +118,15 @@ TEST(AlphaExpansion, GraphCutBeatsNearestLineAssignmentOnCloseRows) {
   pr.num_points = static_cast<int>(pts.size());
   pr.num_labels = 3;  // L_0, row 0, row 1
   for (const auto& p : pts) {
-    pr.data_cost.push_back(0.3);                 // outlier
-    pr.data_cost.push_back(std::abs(p.y()));     // |p - L_1|
+    pr.data_cost.push_back(0.3);              // outlier
+    pr.data_cost.push_back(std::abs(p.y()));  // |p - L_1|
     pr.data_cost.push_back(std::abs(p.y() - 0.35));
   }
   const double lambda = 0.15, zeta = 0.1;  // eq. (1), (2)
   for (int p = 0; p < pr.num_points; ++p)
     for (int q = p + 1; q < pr.num_points; ++q) {
-      const double d2 = (pts[static_cast<std::size_t>(p)] - pts[static_cast<std::size_t>(q)]).squaredNorm();
+      const double d2 =
+          (pts[static_cast<std::size_t>(p)] - pts[static_cast<std::size_t>(q)]).squaredNorm();
       if (d2 < 0.15 * 0.15) pr.edges.push_back({p, q, lambda * std::exp(-d2 / (zeta * zeta))});
     }
   std::vector<int> nearest(pts.size());
@@ -145,9 +146,10 @@ TEST(AlphaExpansion, GraphCutBeatsNearestLineAssignmentOnCloseRows) {
   };
   int changed = 0;
   for (std::size_t i = 0; i < cut.size(); ++i) changed += cut[i] != nearest[i] ? 1 : 0;
-  std::printf("close rows: %zu points, nearest %d correct (E %.2f), graph cut %d correct (E %.2f), "
-              "%d labels changed\n", pts.size(), correct(nearest), labeling_energy(pr, nearest),
-              correct(cut), st.energy, changed);
+  std::printf(
+      "close rows: %zu points, nearest %d correct (E %.2f), graph cut %d correct (E %.2f), "
+      "%d labels changed\n",
+      pts.size(), correct(nearest), labeling_energy(pr, nearest), correct(cut), st.energy, changed);
   EXPECT_GT(changed, 0);
   EXPECT_LT(st.energy, labeling_energy(pr, nearest));
   EXPECT_GT(correct(cut), correct(nearest));

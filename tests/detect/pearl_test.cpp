@@ -4,15 +4,15 @@
 
 #include <array>
 #include <cmath>
-#include <random>
-#include <string>
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <random>
+#include <string>
 
 #include "../common/synthetic_rows.hpp"
-#include "rownav/detect/ransac_lines.hpp"
 #include "row_scoring.hpp"
+#include "rownav/detect/ransac_lines.hpp"
 
 namespace rownav::detect {
 namespace {
@@ -64,7 +64,6 @@ TEST(Pearl, RubyFindsCleanCorridorRows) {
   }
 }
 
-
 // Share of 20 scenes where both corridor rows are found within 2 deg and 5 cm at x = 1 m.
 double robustness(const PearlConfig& base, int weeds, int outliers, double* worst_lateral) {
   int good = 0;
@@ -99,8 +98,8 @@ TEST(Pearl, WeedLevelsRobustnessOfTheThreeVariants) {
       const auto vi = static_cast<std::size_t>(v);
       r[l][vi] = robustness(variant(v), levels[l].first, levels[l].second, &worst);
       std::printf("level %zu (%d weeds, %d outliers) %-5s success %.2f worst lateral %.3f m\n",
-                  l + 1, levels[l].first, levels[l].second,
-                  std::string(core::enum_name(v)).c_str(), r[l][vi], worst);
+                  l + 1, levels[l].first, levels[l].second, std::string(core::enum_name(v)).c_str(),
+                  r[l][vi], worst);
     }
   // Measured (seeds 1..20): level 1 pearl 1.00 opal 1.00 ruby 1.00; level 2 0.85 / 0.75 / 0.85;
   // level 3 0.50 / 0.40 / 0.60. 250 weeds in the corridors' middle third form a weed "row" that
@@ -123,8 +122,10 @@ TEST(Pearl, DegenerateInputsGiveNoRowsOrDegraded) {
   };
   EXPECT_EQ(status_of({}), core::DetectionStatus::no_rows);
   EXPECT_EQ(status_of({{1.0f, 1.0f}}), core::DetectionStatus::no_rows);
-  EXPECT_EQ(status_of(std::vector<Eigen::Vector2f>(50, {nan, 1.0f})), core::DetectionStatus::no_rows);
-  EXPECT_EQ(status_of(std::vector<Eigen::Vector2f>(50, {2.0f, 1.0f})), core::DetectionStatus::no_rows);
+  EXPECT_EQ(status_of(std::vector<Eigen::Vector2f>(50, {nan, 1.0f})),
+            core::DetectionStatus::no_rows);
+  EXPECT_EQ(status_of(std::vector<Eigen::Vector2f>(50, {2.0f, 1.0f})),
+            core::DetectionStatus::no_rows);
   std::vector<Eigen::Vector2f> wall, side, open;
   for (int i = 0; i < 200; ++i) wall.emplace_back(3.0f, -2.0f + 0.02f * static_cast<float>(i));
   EXPECT_EQ(status_of(wall), core::DetectionStatus::no_rows);  // across the robot: not a row

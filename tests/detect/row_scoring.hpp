@@ -13,10 +13,12 @@ namespace rownav::test {
 struct LineScore {
   bool found = false;
   double lateral = std::numeric_limits<double>::infinity();  ///< [m] |y_det(x) - y_true(x)|
-  double heading_deg = 180.0;                                 ///< [deg]
+  double heading_deg = 180.0;                                ///< [deg]
 };
 
-inline double y_at(const core::Line2& l, double x) { return l.y_at(x); }
+inline double y_at(const core::Line2& l, double x) {
+  return l.y_at(x);
+}
 
 /// The detected row closest to `truth` at x (within `gate` [m]).
 inline LineScore score_line(const core::RowObservation& obs, const core::Line2& truth, double x,
@@ -27,7 +29,8 @@ inline LineScore score_line(const core::RowObservation& obs, const core::Line2& 
     if (d > gate || d >= s.lateral) continue;
     s.found = true;
     s.lateral = d;
-    const double dh = std::abs(std::remainder(r.line.heading() - truth.heading(), std::numbers::pi));
+    const double dh =
+        std::abs(std::remainder(r.line.heading() - truth.heading(), std::numbers::pi));
     s.heading_deg = dh * 180.0 / std::numbers::pi;
   }
   return s;

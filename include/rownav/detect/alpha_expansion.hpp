@@ -24,7 +24,9 @@ struct LabelingProblem {
   };
   std::vector<Edge> edges;
 
-  double cost(int p, int l) const { return data_cost[static_cast<std::size_t>(p * num_labels + l)]; }
+  double cost(int p, int l) const {
+    return data_cost[static_cast<std::size_t>(p * num_labels + l)];
+  }
 };
 
 /// Energy of a labelling (labels.size() == num_points, each in [0, num_labels)).
@@ -32,10 +34,10 @@ double labeling_energy(const LabelingProblem& problem, std::span<const int> labe
 
 /// Statistics of one alpha-expansion run.
 struct ExpansionStats {
-  int cycles = 0;        ///< sweeps over all labels
-  int moves = 0;         ///< expansion moves that lowered the energy
+  int cycles = 0;  ///< sweeps over all labels
+  int moves = 0;   ///< expansion moves that lowered the energy
   int max_flow_calls = 0;
-  double energy = 0.0;   ///< final energy
+  double energy = 0.0;  ///< final energy
 };
 
 /// Alpha-expansion solver. Keeps its buffers between calls (one instance per thread).
