@@ -40,6 +40,17 @@ TEST(Pearl, NamesFollowTheVariant) {
   PearlConfig bad;
   bad.zeta = 0.0;
   EXPECT_THROW(PearlDetector{bad}, std::invalid_argument);
+  int fields = 0;
+  PearlConfig c;
+  auto count = [&](std::string_view, auto&) { ++fields; };
+  PearlConfig::fields(c, count);
+  EXPECT_EQ(fields, 25);
+  PearlVariant v{};
+  EXPECT_TRUE(core::enum_from_name("opal", v));
+  EXPECT_EQ(v, PearlVariant::opal);
+  RansacLinesConfig r;
+  r.min_inliers = 1;
+  EXPECT_THROW(RansacLinesDetector{r}, std::invalid_argument);
 }
 
 // Narrow canopy (+-5 cm): < 1 deg and < 3 cm; wide canopy (+-15 cm, points spread uniformly
