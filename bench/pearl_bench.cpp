@@ -2,7 +2,8 @@
 /// 1081-beam lms_1081 scan (mount 0.4 m) simulated in a vineyard (6 rows x 24 m, 2.2 m apart),
 /// robot in corridor 2, points cropped to x in [0, 8] m, |y| <= 4 m; side by side with PCL's
 /// SACSegmentation (SACMODEL_LINE, sequential extraction with the same iterations, distance and
-/// min inliers as ransac_lines) on the same points. One core.
+/// min inliers as ransac_lines) on the same points; and both detectors over real corn_rows_2d
+/// frames. One core.
 ///   ./build/pearl_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <pcl/ModelCoefficients.h>
@@ -14,6 +15,7 @@
 
 #include "rownav/detect/pearl.hpp"
 #include "rownav/detect/ransac_lines.hpp"
+#include "rownav/io/cloud_io.hpp"
 #include "rownav/preprocess/preprocessor.hpp"
 #include "rownav/sim/field_config.hpp"
 #include "rownav/sim/field_truth.hpp"
@@ -134,11 +136,55 @@ void BM_PclSacLines(benchmark::State& state) {
   state.counters["rows"] = static_cast<double>(lines);
 }
 
+/// corn_rows_2d (real scans): every 32nd frame cropped to x in [0, 2.5] m (the row-crop config of
+/// the tests), ~300 cluttered points each; time per frame = reported time / frames.
+const std::vector<std::vector<Eigen::Vector2f>>& corn_frames() {
+  static const std::vector<std::vector<Eigen::Vector2f>> frames = [] {
+    const auto clouds =
+        io::read_points_csv(std::string(ROWNAV_SHARED_DATA) + "/corn_rows_2d/scans.csv");
+    std::vector<std::vector<Eigen::Vector2f>> out;
+    for (std::size_t i = 0; i < clouds.size(); i += 32) {
+      out.emplace_back();
+      for (const auto& p : clouds[i].points)
+        if (p.x >= 0.0f && p.x <= 2.5f && p.y >= -1.2f && p.y <= 1.0f)
+          out.back().emplace_back(p.x, p.y);
+    }
+    return out;
+  }();
+  return frames;
+}
+
+template <class Detector>
+void run_corn(benchmark::State& state, Detector& det) {
+  const auto& frames = corn_frames();
+  for (auto _ : state)
+    for (const auto& f : frames) {
+      detect::DetectorInput in;
+      in.points = f;
+      benchmark::DoNotOptimize(det.detect(in).rows.size());
+    }
+  state.counters["frames"] = static_cast<double>(frames.size());
+  state.counters["per_frame_us"] = benchmark::Counter(
+      static_cast<double>(frames.size()) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_RubyCornRows(benchmark::State& s) {
+  detect::PearlDetector det;
+  run_corn(s, det);
+}
+void BM_RansacLinesCornRows(benchmark::State& s) {
+  detect::RansacLinesDetector det;
+  run_corn(s, det);
+}
+
 BENCHMARK(BM_Ruby)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Opal)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Pearl)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RansacLines)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PclSacLines)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RubyCornRows)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RansacLinesCornRows)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

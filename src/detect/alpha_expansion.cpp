@@ -1,32 +1,23 @@
 #include "rownav/detect/alpha_expansion.hpp"
 
-// GCC 12 reports a false -Wmaybe-uninitialized inside Boost.Graph's edge iterators once they are
-// inlined into expand(); the suppression covers this file only.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <cmath>
 
 namespace rownav::detect {
 
 namespace {
 
-using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
+// Compressed-sparse-row graph rebuilt for every move: edge properties live in flat vectors
+// (no allocation per edge), unlike adjacency_list.
+using Graph = boost::compressed_sparse_row_graph<boost::directedS>;
+using Edge = boost::graph_traits<Graph>::edge_descriptor;
 
-struct VertexProps {
-  Traits::edge_descriptor pred;
-  boost::default_color_type color = boost::white_color;
-  long dist = 0;
-};
-
-struct EdgeProps {
+/// One arc of the move graph; arcs 2k and 2k + 1 are each other's reverse.
+struct Arc {
+  std::size_t u = 0, v = 0;
   double cap = 0.0;
-  double res = 0.0;
-  Traits::edge_descriptor rev;
 };
-
-using Graph =
-    boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS, VertexProps, EdgeProps>;
 
 double potts(int a, int b, double w) {
   return a == b ? 0.0 : w;
@@ -50,24 +41,41 @@ struct AlphaExpansion::Impl {
   std::vector<double> unary;     // per node: cost(switch) - cost(keep)
   std::vector<double> incident;  // per point: sum of incident Potts weights
   std::vector<int> proposal;
-  Graph graph;  // reused: vertices kept, out-edge lists cleared between moves
+  std::vector<Arc> arcs;
+  std::vector<std::size_t> first, pos;  // counting sort of the arcs by source
+  std::vector<std::pair<std::size_t, std::size_t>> sorted;
+  std::vector<double> cap, res;
+  std::vector<Edge> rev, pred;
+  std::vector<boost::default_color_type> color;
+  std::vector<long> dist;
 
-  /// Empties the graph's edges and makes sure it has at least n vertices.
-  Graph& reset_graph(std::size_t n) {
-    for (std::size_t v = 0; v < boost::num_vertices(graph); ++v) boost::clear_out_edges(v, graph);
-    while (boost::num_vertices(graph) < n) boost::add_vertex(graph);
-    return graph;
+  void add_pair(int u, int v, double cap_uv, double cap_vu) {
+    arcs.push_back({static_cast<std::size_t>(u), static_cast<std::size_t>(v), cap_uv});
+    arcs.push_back({static_cast<std::size_t>(v), static_cast<std::size_t>(u), cap_vu});
   }
 
-  void add_pair(Graph& g, int u, int v, double cap_uv, double cap_vu) {
-    const auto e =
-        boost::add_edge(static_cast<std::size_t>(u), static_cast<std::size_t>(v), g).first;
-    const auto r =
-        boost::add_edge(static_cast<std::size_t>(v), static_cast<std::size_t>(u), g).first;
-    g[e].cap = cap_uv;
-    g[r].cap = cap_vu;
-    g[e].rev = r;
-    g[r].rev = e;
+  /// Builds the CSR graph from `arcs` (sorted by source) and its flat property vectors.
+  Graph make_graph(std::size_t n) {
+    first.assign(n + 1, 0);
+    for (const auto& a : arcs) ++first[a.u + 1];
+    for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+    pos.resize(arcs.size());
+    sorted.resize(arcs.size());
+    for (std::size_t k = 0; k < arcs.size(); ++k) {
+      pos[k] = first[arcs[k].u]++;
+      sorted[pos[k]] = {arcs[k].u, arcs[k].v};
+    }
+    cap.resize(arcs.size());
+    rev.resize(arcs.size());
+    res.assign(arcs.size(), 0.0);
+    for (std::size_t k = 0; k < arcs.size(); ++k) {
+      cap[pos[k]] = arcs[k].cap;
+      rev[pos[k]] = Edge(arcs[k].v, pos[k ^ 1U]);
+    }
+    pred.assign(n, Edge());
+    color.assign(n, boost::white_color);
+    dist.assign(n, 0);
+    return Graph(boost::edges_are_sorted, sorted.begin(), sorted.end(), n);
   }
 
   /// Selects the points whose binary move is free. A point p with f_p == alpha is fixed; so is a
@@ -94,7 +102,8 @@ struct AlphaExpansion::Impl {
 
   /// Kolmogorov & Zabih 2004 construction of the move energy; x = 1 means "switch to alpha",
   /// node on the sink side. Returns the graph with source = m, sink = m + 1.
-  void build(const LabelingProblem& pr, int alpha, const std::vector<int>& f, Graph& g) {
+  void build(const LabelingProblem& pr, int alpha, const std::vector<int>& f) {
+    arcs.clear();
     const auto m = static_cast<int>(point_of.size());
     unary.assign(static_cast<std::size_t>(m), 0.0);
     for (int i = 0; i < m; ++i) {
@@ -119,15 +128,15 @@ struct AlphaExpansion::Impl {
       unary[static_cast<std::size_t>(np)] += c - a;
       unary[static_cast<std::size_t>(nq)] += 0.0 - c;
       const double cap = b + c - a;
-      if (cap > 0.0) add_pair(g, np, nq, cap, 0.0);
+      if (cap > 0.0) add_pair(np, nq, cap, 0.0);
     }
     const int s = m, t = m + 1;
     for (int i = 0; i < m; ++i) {
       const double u = unary[static_cast<std::size_t>(i)];
       if (u > 0.0)
-        add_pair(g, s, i, u, 0.0);  // paid when i goes to the sink (switch)
+        add_pair(s, i, u, 0.0);  // paid when i goes to the sink (switch)
       else if (u < 0.0)
-        add_pair(g, i, t, -u, 0.0);  // paid when i stays at the source (keep)
+        add_pair(i, t, -u, 0.0);  // paid when i stays at the source (keep)
     }
   }
 };
@@ -141,18 +150,22 @@ bool AlphaExpansion::expand(const LabelingProblem& problem, int alpha, std::vect
   im.select_nodes(problem, alpha, labels);
   if (im.point_of.empty()) return false;
   const auto m = im.point_of.size();
-  Graph& g = im.reset_graph(m + 2);
-  im.build(problem, alpha, labels, g);
-  boost::boykov_kolmogorov_max_flow(
-      g, boost::get(&EdgeProps::cap, g), boost::get(&EdgeProps::res, g),
-      boost::get(&EdgeProps::rev, g), boost::get(&VertexProps::pred, g),
-      boost::get(&VertexProps::color, g), boost::get(&VertexProps::dist, g),
-      boost::get(boost::vertex_index, g), m, m + 1);
+  im.build(problem, alpha, labels);
+  const Graph g = im.make_graph(m + 2);
+  const auto ei = boost::get(boost::edge_index, g);
+  const auto vi = boost::get(boost::vertex_index, g);
+  boost::boykov_kolmogorov_max_flow(g, boost::make_iterator_property_map(im.cap.begin(), ei),
+                                    boost::make_iterator_property_map(im.res.begin(), ei),
+                                    boost::make_iterator_property_map(im.rev.begin(), ei),
+                                    boost::make_iterator_property_map(im.pred.begin(), vi),
+                                    boost::make_iterator_property_map(im.color.begin(), vi),
+                                    boost::make_iterator_property_map(im.dist.begin(), vi), vi, m,
+                                    m + 1);
   im.proposal = labels;
   bool any = false;
   for (std::size_t i = 0; i < m; ++i) {
     // Source tree (black) = keep; sink tree and free nodes = switch: both are minimum cuts.
-    if (g[i].color == boost::black_color) continue;
+    if (im.color[i] == boost::black_color) continue;
     im.proposal[static_cast<std::size_t>(im.point_of[i])] = alpha;
     any = true;
   }
