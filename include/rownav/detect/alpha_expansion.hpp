@@ -60,6 +60,8 @@ class AlphaExpansion {
   bool expand(const LabelingProblem& problem, int alpha, std::vector<int>& labels, double& energy);
 
  private:
+  bool expand_prepared(const LabelingProblem& problem, int alpha, std::vector<int>& labels,
+                       double& energy);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -72,7 +72,7 @@ struct PearlConfig {
   /// new models lower it, so the default waits 3 and returns the lowest-energy model set.
   int stall_iterations = 3;
   /// [-] alpha-expansion sweeps over the labels per iteration at most.
-  int expansion_cycles = 4;
+  int expansion_cycles = 2;
   /// [-] minimal inliers of a model: fewer after an expansion and the model is eliminated
   /// (sec. 2.2.2, opal / ruby); also the support a reported row needs (all variants).
   int min_support = 8;
