@@ -12,10 +12,12 @@
 ///           (sec. 2.2.2), new-model search right after the expansion (sec. 2.2.3, Fig. 5 order).
 ///  - ruby:  opal + the parallelism constraint R_j = omega D_j / psi_j (sec. 2.2.4).
 /// Deviations from the paper (documented at the fields): label costs (Isack & Boykov's energy,
-/// absent from eq. (1)) are applied greedily after each expansion, not inside the cut; the data
-/// term's point-to-line distance is capped by the outlier cost so that a point always prefers
-/// L_0 over a model farther than the threshold; surviving models must carry `min_row_support`
-/// points and head within `max_row_heading_deg` of the robot's x axis to be reported as rows.
+/// absent from eq. (1)) are applied greedily after each expansion, not inside the cut; the loop
+/// stops after `stall_iterations` iterations without an energy decrease (the paper: 1) and
+/// returns the lowest-energy set after one more deterministic pass (elimination, label cost,
+/// eq. (3), merge; no parallelism); eq. (3) is solved by iteratively reweighted TLS; models
+/// sampled in this iteration are not judged by the parallelism test until they hold points;
+/// reported rows need `min_support` points and a heading within `max_row_heading_deg`.
 #include <array>
 #include <cstdint>
 #include <memory>
