@@ -9,6 +9,8 @@
 #include "rownav/detect/cone_rect.hpp"
 #include "rownav/detect/hough_skew.hpp"
 #include "rownav/detect/parallel_lines.hpp"
+#include "rownav/detect/pearl.hpp"
+#include "rownav/detect/ransac_lines.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/yaml_config.hpp"
 
@@ -42,6 +44,20 @@ Creator creator() {
   };
 }
 
+// PEARL, OPAL and RUBY share PearlConfig; the section name picks the variant (Malavazi 2018).
+Creator pearl_creator(detect::PearlVariant variant) {
+  return [variant](const YAML::Node& section, const std::string& file, const std::string& path) {
+    detect::PearlConfig c;
+    c.variant = variant;
+    decode_section(section, c, file, path);
+    if (c.variant != variant)
+      detail::yaml_fail_validation(file, section, path,
+                                   "variant: must be '" + std::string(core::enum_name(variant)) +
+                                       "' in section '" + path + "' (the section picks it)");
+    return std::unique_ptr<detect::RowDetector>(std::make_unique<detect::PearlDetector>(c));
+  };
+}
+
 struct Entry {
   std::string_view name;
   Creator make;
@@ -55,6 +71,10 @@ const std::vector<Entry>& registry() {
       {"parallel_lines", creator<detect::ParallelLinesDetector, detect::ParallelLinesConfig>()},
       {"cluster_rows", creator<detect::ClusterRowsDetector, detect::ClusterRowsConfig>()},
       {"cone_rect", creator<detect::ConeRectDetector, detect::ConeRectConfig>()},
+      {"ransac_lines", creator<detect::RansacLinesDetector, detect::RansacLinesConfig>()},
+      {"pearl", pearl_creator(detect::PearlVariant::pearl)},
+      {"opal", pearl_creator(detect::PearlVariant::opal)},
+      {"ruby", pearl_creator(detect::PearlVariant::ruby)},
   };
   return entries;
 }
