@@ -97,11 +97,11 @@ void ParallelLinesConfig::validate() const {
   core::check_positive(trunk_max_size, "trunk_max_size");
   core::check_positive(trunk_max_line_distance, "trunk_max_line_distance");
   core::check_positive(trunk_max_range, "trunk_max_range");
+  core::validate_nested(trunk_offset, "trunk_offset");
 }
 
-ParallelLinesDetector::ParallelLinesDetector(const ParallelLinesConfig& config) : config_(config) {
-  config_.validate();
-}
+ParallelLinesDetector::ParallelLinesDetector(const ParallelLinesConfig& config)
+    : config_((config.validate(), config)), offsets_(config.trunk_offset) {}
 
 double ParallelLinesDetector::score(const Model& m) const {
   const Counts c = classify(scoring_, m.a, m.bl, m.br, config_.inlier_distance);
@@ -244,6 +244,11 @@ core::RowObservation ParallelLinesDetector::detect(const DetectorInput& input) {
   const bool has_l = keep(n.left, left_), has_r = keep(n.right, right_);
   if (has_l) obs.rows.push_back(make_row_line(core::Line2::from_slope_intercept(m.a, m.bl), left_));
   if (has_r) obs.rows.push_back(make_row_line(core::Line2::from_slope_intercept(m.a, m.br), right_));
+  // The lines fit the corridor faces of the canopy walls; the rows are the trunk lines behind
+  // them (trunk_offset.hpp). The 3D cloud is needed; 2D points keep the canopy lines.
+  if (input.cloud != nullptr &&
+      offsets_.collect(*input.cloud, Eigen::Vector2d(1.0, m.a).normalized()) > 0)
+    for (auto& r : obs.rows) offsets_.apply(r);
   obs.heading = std::atan(m.a);
   finalize_observation(obs);
   if (config_.detect_trunks && input.cloud != nullptr) find_trunks(*input.cloud, m, has_l, has_r);

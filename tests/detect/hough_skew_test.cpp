@@ -170,9 +170,10 @@ TEST(HoughSkew, SimulatedVineyardFrame) {
     ASSERT_TRUE(e.found);
     EXPECT_LT(e.heading_deg, 0.5);
     EXPECT_LT(e.centre, 0.03);
-    // The LiDAR sees the corridor side of each 0.5 m canopy: every row comes out ~8 cm closer to
-    // the robot than its centre line (the paper's "centre of the perceived canopy").
-    EXPECT_LT(e.worst(), 0.12);
+    // The LiDAR sees the corridor side of each 0.5 m canopy: fitted to the canopy alone, every
+    // row comes out ~8 cm closer to the robot than its centre line (the paper's "centre of the
+    // perceived canopy"); the trunk band moves it back onto the trunk line (trunk_offset.hpp).
+    EXPECT_LT(e.worst(), 0.03);  // measured 7-13 mm (canopy alone ~8 cm)
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/detect/row_detector.hpp"
+#include "rownav/detect/trunk_offset.hpp"
 
 namespace rownav::detect {
 
@@ -59,6 +60,9 @@ struct HoughSkewConfig {
   /// [m] rows whose band points spread more (RMS across the line) are dropped: a 0.5 m vine canopy
   /// gives ~0.15 m, a weed strip filling the band ~0.2 m (rownav)
   double max_row_rms = 0.17;
+  /// rownav: row offsets re-estimated from the trunk band behind the canopy faces (3D cloud only;
+  /// the canopy fit alone puts vineyard rows up to a canopy half width too close to the robot)
+  TrunkOffsetConfig trunk_offset;
 
   /// Row crop preset (maize, corn; rows 0.7-0.8 m apart, 2D scanner): chosen for the crop type,
   /// not for one data set. Validated on corn_rows_2d (see tests/detect/hough_skew_test.cpp).
@@ -71,6 +75,7 @@ struct HoughSkewConfig {
     c.max_segment_width = 0.6;
     c.band_half_width = 0.2;
     c.min_row_length = 0.3;
+    c.trunk_offset.enabled = false;  // no trunk band: maize stems and leaves mix at every height
     return c;
   }
 
@@ -102,6 +107,7 @@ struct HoughSkewConfig {
     v("common_heading", s.common_heading);
     v("min_row_length", s.min_row_length);
     v("max_row_rms", s.max_row_rms);
+    v("trunk_offset", s.trunk_offset);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
@@ -135,10 +141,12 @@ class HoughSkewDetector : public RowDetector {
   void accept(int from, int to);
   /// Lower quartile of hist_ between its first and last occupied bins.
   double lower_quartile();
-  /// Joint parallel-line fit of the points around each segment (rownav); fills obs rows.
-  void fit_rows(double gamma, core::RowObservation& obs);
+  /// Joint parallel-line fit of the points around each segment (rownav), then the trunk-line
+  /// offsets from `cloud` when given; fills obs rows.
+  void fit_rows(double gamma, const core::PointCloud* cloud, core::RowObservation& obs);
 
   HoughSkewConfig config_;
+  TrunkOffset trunks_;
   std::vector<double> coarse_gamma_, coarse_sin_, coarse_cos_;  // precomputed tables
   // Per-frame buffers, reused.
   std::vector<Eigen::Vector2f> pts_, subset_;

@@ -15,6 +15,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/detect/row_detector.hpp"
+#include "rownav/detect/trunk_offset.hpp"
 
 namespace rownav::detect {
 
@@ -48,6 +49,8 @@ struct ParallelLinesConfig {
   double trunk_max_size = 0.3;          ///< [m] larger clusters (bounding-box diagonal) are not trunks
   double trunk_max_line_distance = 0.4; ///< [m] a trunk lies this close to its row line
   double trunk_max_range = 5.0;         ///< [m] trunks farther from the robot are ignored
+  /// Row offsets re-estimated from the trunk band behind the fitted canopy faces (3D cloud only)
+  TrunkOffsetConfig trunk_offset;
 
   /// Defaults: vineyards / orchards (rows 1.5-3 m apart). Row crop preset (maize, corn; rows
   /// 0.7-0.8 m apart, 2D scanner): chosen for the crop type, not for one data set; validated on
@@ -60,6 +63,7 @@ struct ParallelLinesConfig {
     c.min_sample_dx = 0.5;
     c.min_row_length = 0.3;
     c.min_contrast = 1.2;  // leaves reach into narrow corridors: less empty space between rows
+    c.trunk_offset.enabled = false;  // no trunk band: maize stems and leaves mix at every height
     return c;
   }
 
@@ -87,6 +91,7 @@ struct ParallelLinesConfig {
     v("trunk_max_size", s.trunk_max_size);
     v("trunk_max_line_distance", s.trunk_max_line_distance);
     v("trunk_max_range", s.trunk_max_range);
+    v("trunk_offset", s.trunk_offset);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
@@ -124,6 +129,7 @@ class ParallelLinesDetector : public RowDetector {
   void find_trunks(const core::PointCloud& cloud, const Model& m, bool has_l, bool has_r);
 
   ParallelLinesConfig config_;
+  TrunkOffset offsets_;
   std::array<TrunkObservation, 2> trunks_{};
   // Per-frame buffers, reused.
   std::vector<Eigen::Vector2f> pts_, scoring_, left_, right_;
