@@ -40,12 +40,12 @@ bool Dbscan::build_cells(const std::vector<Eigen::Vector2f>& points, float eps) 
   if (((hi - lo) / side).maxCoeff() > kMaxCellsPerAxis) return false;
   lo_ = lo, inv_side_ = 1.0f / side;
   nx_ = static_cast<std::int64_t>((hi.x() - lo.x()) * inv_side_) + 1;
-  const std::int64_t ny = static_cast<std::int64_t>((hi.y() - lo.y()) * inv_side_) + 1;
+  ny_ = static_cast<std::int64_t>((hi.y() - lo.y()) * inv_side_) + 1;
   keyed_.clear();
   for (std::size_t i = 0; i < points.size(); ++i)
     if (points[i].allFinite()) keyed_.emplace_back(key_of(points[i]), static_cast<int>(i));
   // Points grouped by cell, ascending index within a cell: counting sort on a dense grid.
-  const std::int64_t cells = nx_ * ny;
+  const std::int64_t cells = nx_ * ny_;
   if (cells <= 4 * static_cast<std::int64_t>(points.size()) + 4096) {
     cell_start_.assign(static_cast<std::size_t>(cells + 1), 0);
     for (const auto& e : keyed_) ++cell_start_[static_cast<std::size_t>(e.first) + 1];
@@ -56,6 +56,7 @@ bool Dbscan::build_cells(const std::vector<Eigen::Vector2f>& points, float eps) 
   } else {
     std::sort(keyed_.begin(), keyed_.end());
   }
+  dense_ = cells <= 4 * static_cast<std::int64_t>(points.size()) + 4096;
   cells_.clear();
   cell_of_.assign(points.size(), -1);
   for (std::size_t k = 0; k < keyed_.size(); ++k) {
@@ -64,12 +65,22 @@ bool Dbscan::build_cells(const std::vector<Eigen::Vector2f>& points, float eps) 
     ++cells_.back().end;
     cell_of_[static_cast<std::size_t>(keyed_[k].second)] = static_cast<int>(cells_.size()) - 1;
   }
+  if (dense_) {  // first occupied cell at or after every key: row ranges without a search
+    first_cell_.resize(static_cast<std::size_t>(cells + 1));
+    int c = 0;
+    for (std::int64_t k = 0; k <= cells; ++k) {
+      while (c < static_cast<int>(cells_.size()) && cells_[static_cast<std::size_t>(c)].key < k) ++c;
+      first_cell_[static_cast<std::size_t>(k)] = c;
+    }
+  }
   return true;
 }
 
 std::pair<int, int> Dbscan::row_cells(std::int64_t cx, std::int64_t y) const {
   const std::int64_t k0 = y * nx_ + std::max<std::int64_t>(cx - kReach, 0);
   const std::int64_t k1 = y * nx_ + std::min<std::int64_t>(cx + kReach, nx_ - 1);
+  if (dense_)
+    return {first_cell_[static_cast<std::size_t>(k0)], first_cell_[static_cast<std::size_t>(k1 + 1)]};
   auto cmp = [](const Cell& c, std::int64_t k) { return c.key < k; };
   const auto a = std::lower_bound(cells_.begin(), cells_.end(), k0, cmp);
   const auto b = std::lower_bound(a, std::min(a + 2 * kReach + 1, cells_.end()), k1 + 1, cmp);
@@ -80,7 +91,8 @@ template <class F>
 void Dbscan::for_neighbour_cells(int c, F&& f) const {
   const std::int64_t key = cells_[static_cast<std::size_t>(c)].key;
   const std::int64_t cx = key % nx_, cy = key / nx_;
-  for (std::int64_t y = std::max<std::int64_t>(cy - kReach, 0); y <= cy + kReach; ++y) {
+  for (std::int64_t y = std::max<std::int64_t>(cy - kReach, 0); y <= std::min(cy + kReach, ny_ - 1);
+       ++y) {
     const auto [a, b] = row_cells(cx, y);
     for (int d = a; d < b; ++d)
       if (!f(d)) return;

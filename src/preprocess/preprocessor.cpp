@@ -61,15 +61,16 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
 }
 
 void Preprocessor::crop_3d(std::span<const core::PointXYZIRT> in) {
-  // Branch-free compaction into a buffer that only grows (no per-frame initialisation): every
-  // point is written, the cursor advances only for the kept ones.
+  // Into a buffer that only grows (no per-frame initialisation). Branches, not a branch-free
+  // compaction: a column's returns share the outcome, and writing every point costs more.
   if (crop_buf_.size() < in.size()) crop_buf_.resize(in.size());
   std::size_t kept = 0, invalid = 0;
   for (const auto& p : in) {
-    const bool finite = p.finite();
-    invalid += !finite;
-    crop_buf_[kept] = p;
-    kept += finite & crop_.contains_branchless(p.x, p.y, p.z);
+    if (!p.finite()) {
+      ++invalid;
+      continue;
+    }
+    if (crop_.contains(p.x, p.y, p.z)) crop_buf_[kept++] = p;
   }
   cropped_ = std::span<const core::PointXYZIRT>(crop_buf_.data(), kept);
   out_.dropped_invalid = invalid;

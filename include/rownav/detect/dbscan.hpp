@@ -63,9 +63,10 @@ class Dbscan {
   // grid: origin, 1 / cell side, cells per row; (cell key, point) grouped by cell
   Eigen::Vector2f lo_ = Eigen::Vector2f::Zero();
   float inv_side_ = 1.0f;
-  std::int64_t nx_ = 1;
+  std::int64_t nx_ = 1, ny_ = 1;
+  bool dense_ = false;  // first_cell_ holds, for every key, the first occupied cell at or after
   std::vector<std::pair<std::int64_t, int>> keyed_, sorted_;
-  std::vector<int> cell_start_, cell_of_, root_id_;
+  std::vector<int> cell_start_, cell_of_, root_id_, first_cell_;
   std::vector<Cell> cells_;
   std::vector<char> core_, cell_has_core_;
 };

@@ -39,6 +39,8 @@ class VoxelGrid {
   }
   /// As filter() on the points of `in` for which keep(p) holds, in one pass (the preprocessor
   /// fuses its height band into the voxel pass this way). Same output as filtering a copy.
+  /// Every point is looked up in the hash: a "same voxel as the previous point" shortcut costs
+  /// more in mispredicted branches than it saves (bench/preprocess_bench.cpp, BM_ChainStep/3).
   template <class Keep>
   void filter_if(std::span<const core::PointXYZIRT> in, std::vector<core::PointXYZIRT>& out,
                  Keep&& keep);
@@ -56,47 +58,34 @@ class VoxelGrid {
   float inv_ = 0.0f;
   CellHash hash_;
   std::vector<Acc> acc_;
-  std::vector<std::uint32_t> kept_;  // filter_if: indices of the kept points (only grows)
 };
 
 template <class Keep>
 void VoxelGrid::filter_if(std::span<const core::PointXYZIRT> in,
                           std::vector<core::PointXYZIRT>& out, Keep&& keep) {
   out.clear();
-  // Indices of the kept points first, branch-free (keep() is often a coin flip: ground and
-  // canopy returns alternate), then the voxel pass over them.
-  if (kept_.size() < in.size()) kept_.resize(in.size());
-  std::size_t n = 0;
-  for (std::uint32_t i = 0; i < in.size(); ++i) {
-    kept_[n] = i;
-    n += static_cast<bool>(keep(in[i]));
-  }
   if (inv_ == 0.0f) {
-    for (std::size_t k = 0; k < n; ++k) out.push_back(in[kept_[k]]);
+    for (const auto& p : in)
+      if (keep(p)) out.push_back(p);
     return;
   }
   // Size the table for last frame's voxel count (it grows if needed) so that it stays in cache.
-  hash_.reset(std::min(n, acc_.size() + acc_.size() / 2 + 64));
+  hash_.reset(std::min(in.size(), acc_.size() + acc_.size() / 2 + 64));
   acc_.clear();
-  std::uint64_t last_key = ~std::uint64_t{0};
-  std::uint32_t last = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t i = kept_[k];
+  for (std::uint32_t i = 0; i < in.size(); ++i) {
     const auto& p = in[i];
     int ix = 0, iy = 0, iz = 0;
-    if (!cell_index(p.x * inv_, ix) || !cell_index(p.y * inv_, iy) || !cell_index(p.z * inv_, iz))
+    if (!keep(p) || !cell_index(p.x * inv_, ix) || !cell_index(p.y * inv_, iy) ||
+        !cell_index(p.z * inv_, iz))
       continue;
-    const std::uint64_t key = cell_key(ix, iy, iz);
-    if (key != last_key) {  // consecutive returns of a column often share a voxel
-      bool fresh = false;
-      last = hash_.find_or_insert(key, static_cast<std::uint32_t>(acc_.size()), fresh);
-      last_key = key;
-      if (fresh) {
-        acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
-        continue;
-      }
+    bool fresh = false;
+    const std::uint32_t a = hash_.find_or_insert(cell_key(ix, iy, iz),
+                                                 static_cast<std::uint32_t>(acc_.size()), fresh);
+    if (fresh) {
+      acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
+      continue;
     }
-    Acc& v = acc_[last];
+    Acc& v = acc_[a];
     v.x += p.x, v.y += p.y, v.z += p.z, v.intensity += p.intensity, v.time += p.time;
     ++v.count;
   }
