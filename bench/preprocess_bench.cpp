@@ -77,12 +77,42 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr to_pcl(const std::vector<Eigen::Vector2f>& p
 }
 
 void BM_Chain(benchmark::State& state) {
-  const auto& d = data();
+  const auto& d = data();  // simulated before the timing
   rp::Preprocessor pre{rp::PreprocessConfig{}};
   std::size_t kept = 0;
   for (auto _ : state) kept = pre.run(d.frame).cloud.size();
   state.counters["points_in"] = double(d.frame.size());
   state.counters["kept"] = double(kept);
+}
+
+// The default chain's steps one at a time on copies (0 crop, 1 ground estimate, 2 height band,
+// 3 voxel grid of the band), to see where BM_Chain spends its time.
+void BM_ChainStep(benchmark::State& state) {
+  const auto& d = data();
+  const rp::PreprocessConfig c;
+  const rp::CropBox box(c.crop);
+  rp::GroundEstimator ground(c.ground);
+  rp::VoxelGrid grid(c.voxel);
+  std::vector<rownav::core::PointXYZIRT> cropped, band, out;
+  const auto crop = [&] {
+    cropped.clear();
+    for (const auto& p : d.frame.points)
+      if (p.finite() && box.contains(p.x, p.y, p.z)) cropped.push_back(p);
+  };
+  crop();
+  ground.estimate(cropped);
+  rp::height_band(cropped, ground, c.height, band);
+  for (auto _ : state) {
+    switch (state.range(0)) {
+      case 0: crop(); break;
+      case 1: benchmark::DoNotOptimize(ground.estimate(cropped)); break;
+      case 2: rp::height_band(cropped, ground, c.height, band); break;
+      default: grid.filter(band, out);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["cropped"] = double(cropped.size());
+  state.counters["band"] = double(band.size());
 }
 
 void BM_ChainScan(benchmark::State& state) {
@@ -171,6 +201,7 @@ void BM_StatisticalOutlierPcl(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Chain)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ChainStep)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ChainScan)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelGridRownav)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelGridPcl)->Unit(benchmark::kMicrosecond);

@@ -1,6 +1,6 @@
-// DBSCAN (Ester 1996; "DBSCAN revisited, revisited", Schubert 2017, cited by Emmi 2021) in 2D:
-// neighbour lists (CSR) from a grid or a kd-tree, core points joined by union-find, border
-// points given to the cluster of their first core neighbour.
+// DBSCAN (Ester 1996; "DBSCAN revisited, revisited", Schubert 2017, cited by Emmi 2021) in 2D,
+// kd-tree variant: neighbour lists (CSR) from nanoflann, core points joined by union-find, border
+// points given to the cluster of their first core neighbour. The grid variant: dbscan_grid.cpp.
 #include "rownav/detect/dbscan.hpp"
 
 #include <algorithm>
@@ -10,8 +10,6 @@
 
 namespace rownav::detect {
 namespace {
-
-constexpr std::int64_t kMaxDenseCells = 1 << 20;
 
 int find_root(std::vector<int>& parent, int i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
@@ -35,59 +33,6 @@ struct PointsAdaptor {
 };
 
 }  // namespace
-
-void Dbscan::neighbours_grid(const std::vector<Eigen::Vector2f>& points, float eps) {
-  const std::size_t n = points.size();
-  Eigen::Vector2f lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const auto& p : points)
-    if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  if (!(lo.x() <= hi.x()) || ((hi - lo) / eps).maxCoeff() > 1e8f) {  // none finite, or far apart
-    neighbours_kd_tree(points, eps);
-    return;
-  }
-  const std::int64_t nx = static_cast<std::int64_t>((hi.x() - lo.x()) / eps) + 1;
-  const std::int64_t ny = static_cast<std::int64_t>((hi.y() - lo.y()) / eps) + 1;
-  keyed_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!points[i].allFinite()) continue;
-    const auto cx = static_cast<std::int64_t>((points[i].x() - lo.x()) / eps);
-    const auto cy = static_cast<std::int64_t>((points[i].y() - lo.y()) / eps);
-    keyed_.emplace_back(cy * nx + cx, static_cast<int>(i));
-  }
-  std::sort(keyed_.begin(), keyed_.end());
-  const bool dense = nx * ny <= std::max<std::int64_t>(kMaxDenseCells, 4 * static_cast<std::int64_t>(n));
-  if (dense) {  // start of every cell in keyed_, one extra at the end
-    cell_start_.assign(static_cast<std::size_t>(nx * ny + 1), 0);
-    for (const auto& [key, i] : keyed_) ++cell_start_[static_cast<std::size_t>(key) + 1];
-    std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
-  }
-  // Range of keyed_ holding the cells [k0, k1] of one grid row.
-  auto range = [&](std::int64_t k0, std::int64_t k1) -> std::pair<int, int> {
-    if (dense)
-      return {cell_start_[static_cast<std::size_t>(k0)], cell_start_[static_cast<std::size_t>(k1) + 1]};
-    auto cmp = [](const auto& e, std::int64_t k) { return e.first < k; };
-    const auto a = std::lower_bound(keyed_.begin(), keyed_.end(), k0, cmp);
-    const auto b = std::lower_bound(a, keyed_.end(), k1 + 1, cmp);
-    return {static_cast<int>(a - keyed_.begin()), static_cast<int>(b - keyed_.begin())};
-  };
-  const float eps2 = eps * eps;
-  offsets_.assign(n + 1, 0);
-  adj_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    offsets_[i] = static_cast<int>(adj_.size());
-    if (!points[i].allFinite()) continue;
-    const auto cx = static_cast<std::int64_t>((points[i].x() - lo.x()) / eps);
-    const auto cy = static_cast<std::int64_t>((points[i].y() - lo.y()) / eps);
-    for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y) {
-      const auto [a, b] = range(y * nx + std::max<std::int64_t>(cx - 1, 0), y * nx + std::min(cx + 1, nx - 1));
-      for (int k = a; k < b; ++k) {
-        const int j = keyed_[static_cast<std::size_t>(k)].second;
-        if ((points[static_cast<std::size_t>(j)] - points[i]).squaredNorm() <= eps2) adj_.push_back(j);
-      }
-    }
-  }
-  offsets_[n] = static_cast<int>(adj_.size());
-}
 
 void Dbscan::neighbours_kd_tree(const std::vector<Eigen::Vector2f>& points, float eps) {
   using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
@@ -151,10 +96,9 @@ const std::vector<int>& Dbscan::run(const std::vector<Eigen::Vector2f>& points, 
   clusters_ = 0;
   labels_.assign(points.size(), -1);
   if (!(eps > 0.0) || !std::isfinite(eps) || min_pts < 1 || points.empty()) return labels_;
-  if (search == NeighbourSearch::kd_tree)
-    neighbours_kd_tree(points, static_cast<float>(eps));
-  else
-    neighbours_grid(points, static_cast<float>(eps));
+  const auto e = static_cast<float>(eps);
+  if (search == NeighbourSearch::grid && run_grid(points, e, min_pts)) return labels_;
+  neighbours_kd_tree(points, e);  // or a grid too large for the extent of the points
   label(points.size(), min_pts);
   return labels_;
 }

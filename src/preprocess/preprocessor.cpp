@@ -30,18 +30,15 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
   out_.cloud.has_intensity = cloud_base.has_intensity;
   out_.cloud.has_ring = cloud_base.has_ring;
   out_.cloud.has_time = cloud_base.has_time;
-  out_.dropped_invalid = 0;
-  cropped_.clear();
-  for (const auto& p : cloud_base.points) {
-    if (!p.finite()) {
-      ++out_.dropped_invalid;
-      continue;
-    }
-    if (crop_.contains(p.x, p.y, p.z)) cropped_.push_back(p);
-  }
+  crop_3d(cloud_base.points);
   out_.ground_ok = ground_.estimate(cropped_);
-  height_band(cropped_, ground_, config_.height, band_);
-  voxel_.filter(band_, out_.cloud.points);
+  // Height band fused into the voxel pass (no copy of the band).
+  const auto lo = static_cast<float>(config_.height.min_height);
+  const auto hi = static_cast<float>(config_.height.max_height);
+  voxel_.filter_if(cropped_, out_.cloud.points, [&](const core::PointXYZIRT& p) {
+    const float h = ground_.height(p);
+    return (h >= lo) & (h <= hi);
+  });
   out_.points.clear();
   if (config_.use_scan) {
     out_.scan.stamp = cloud_base.stamp;
@@ -61,6 +58,22 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
   }
   for (const auto& p : out_.cloud.points) out_.points.emplace_back(p.x, p.y);
   return out_;
+}
+
+void Preprocessor::crop_3d(std::span<const core::PointXYZIRT> in) {
+  // Into a buffer that only grows (no per-frame initialisation). Branches, not a branch-free
+  // compaction: a column's returns share the outcome, and writing every point costs more.
+  if (crop_buf_.size() < in.size()) crop_buf_.resize(in.size());
+  std::size_t kept = 0, invalid = 0;
+  for (const auto& p : in) {
+    if (!p.finite()) {
+      ++invalid;
+      continue;
+    }
+    if (crop_.contains(p.x, p.y, p.z)) crop_buf_[kept++] = p;
+  }
+  cropped_ = std::span<const core::PointXYZIRT>(crop_buf_.data(), kept);
+  out_.dropped_invalid = invalid;
 }
 
 void Preprocessor::filter_points_2d() {

@@ -1,8 +1,6 @@
 // Voxel grid: integer keys, open-addressing hash, one accumulator per occupied voxel.
 #include "rownav/preprocess/voxel_grid.hpp"
 
-#include <algorithm>
-
 namespace rownav::preprocess {
 
 void VoxelGridConfig::validate() const {
@@ -15,37 +13,8 @@ VoxelGrid::VoxelGrid(const VoxelGridConfig& config) : config_(config) {
   inv_ = config_.voxel_size > 0.0 ? static_cast<float>(1.0 / config_.voxel_size) : 0.0f;
 }
 
-void VoxelGrid::filter(std::span<const core::PointXYZIRT> in,
-                       std::vector<core::PointXYZIRT>& out) {
-  out.clear();
-  if (inv_ == 0.0f) {
-    out.assign(in.begin(), in.end());
-    return;
-  }
-  // Size the table for last frame's voxel count (it grows if needed) so that it stays in cache.
-  hash_.reset(std::min(in.size(), acc_.size() + acc_.size() / 2 + 64));
-  acc_.clear();
-  std::uint64_t last_key = ~std::uint64_t{0};
-  std::uint32_t last = 0;
-  for (std::uint32_t i = 0; i < in.size(); ++i) {
-    const auto& p = in[i];
-    int ix = 0, iy = 0, iz = 0;
-    if (!cell_index(p.x * inv_, ix) || !cell_index(p.y * inv_, iy) || !cell_index(p.z * inv_, iz))
-      continue;
-    const std::uint64_t key = cell_key(ix, iy, iz);
-    if (key != last_key) {  // consecutive returns of a column often share a voxel
-      bool fresh = false;
-      last = hash_.find_or_insert(key, static_cast<std::uint32_t>(acc_.size()), fresh);
-      last_key = key;
-      if (fresh) {
-        acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
-        continue;
-      }
-    }
-    Acc& v = acc_[last];
-    v.x += p.x, v.y += p.y, v.z += p.z, v.intensity += p.intensity, v.time += p.time;
-    ++v.count;
-  }
+void VoxelGrid::finish(std::span<const core::PointXYZIRT> in,
+                       std::vector<core::PointXYZIRT>& out) const {
   const auto min_n = static_cast<std::uint32_t>(config_.min_points_per_voxel);
   for (const auto& v : acc_) {
     if (v.count < min_n) continue;

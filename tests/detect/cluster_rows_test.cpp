@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -172,6 +173,37 @@ TEST(ClusterRows, DeterministicAndSearchIndependent) {
   Dbscan g, t;
   EXPECT_EQ(g.run(scene.points, 0.3, 4, NeighbourSearch::grid),
             t.run(scene.points, 0.3, 4, NeighbourSearch::kd_tree));
+}
+
+// Grid DBSCAN (dense cells all core, cells joined by one core pair) against the neighbour-list
+// DBSCAN on a kd-tree: identical labels on stacked, duplicated, sparse and non-finite points.
+TEST(ClusterRows, GridDbscanEqualsNeighbourLists) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Eigen::Vector2f> pts;
+  for (int wall = 0; wall < 4; ++wall)  // canopy walls: voxel columns stacked 1-12 high
+    for (int i = 0; i < 120; ++i) {
+      const Eigen::Vector2f c(0.15f * static_cast<float>(i), -3.0f + 2.0f * static_cast<float>(wall) +
+                                                                 0.3f * u(rng));
+      const int stack = 1 + static_cast<int>(12.0f * u(rng));
+      for (int k = 0; k < stack; ++k) pts.push_back(c + 0.05f * Eigen::Vector2f(u(rng), u(rng)));
+    }
+  for (int i = 0; i < 400; ++i) pts.emplace_back(18.0f * u(rng), 8.0f * u(rng) - 4.0f);  // sparse
+  for (int i = 0; i < 30; ++i) pts.push_back(pts[static_cast<std::size_t>(i * 37)]);  // duplicates
+  pts.emplace_back(std::nanf(""), 1.0f);
+  pts.emplace_back(2.0f, INFINITY);
+  std::shuffle(pts.begin(), pts.end(), rng);
+  Dbscan g, t;
+  for (const double eps : {0.1, 0.2, 0.35, 0.6, 1.2})
+    for (const int min_pts : {1, 2, 4, 8, 20}) {
+      SCOPED_TRACE(testing::Message() << "eps " << eps << " min_pts " << min_pts);
+      EXPECT_EQ(g.run(pts, eps, min_pts, NeighbourSearch::grid),
+                t.run(pts, eps, min_pts, NeighbourSearch::kd_tree));
+      EXPECT_EQ(g.cluster_count(), t.cluster_count());
+    }
+  // Far apart (too many cells for the grid): falls back to the kd-tree, same labels.
+  std::vector<Eigen::Vector2f> far{{0.0f, 0.0f}, {0.1f, 0.0f}, {0.0f, 0.1f}, {5e4f, 0.0f}};
+  EXPECT_EQ(g.run(far, 0.35, 2, NeighbourSearch::grid), t.run(far, 0.35, 2, NeighbourSearch::kd_tree));
 }
 
 // Real data, one row-crop config (ClusterRowsConfig::row_crop()) over all 1630 frames.

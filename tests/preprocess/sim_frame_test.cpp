@@ -2,6 +2,8 @@
 // the robot's base is gravity-aligned, so the slope shows in the base frame).
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "rownav/preprocess/preprocessor.hpp"
 #include "rownav/sim/field_config.hpp"
 #include "rownav/sim/field_truth.hpp"
@@ -105,4 +107,50 @@ TEST(PreprocessSim, VoxelAndScanOutputs) {
   EXPECT_EQ(scan_pre.input(1.0).cloud, &out.cloud);
   for (const auto& p : out.points) EXPECT_LE(std::abs(p.y()), 4.0f + 1e-3f);
   EXPECT_GT(dense, 200u);
+}
+
+// The fused chain (crop pass; band + voxel pass) gives exactly the output of the steps run one
+// after the other on copies: crop, ground estimate, height_band, VoxelGrid::filter.
+TEST(PreprocessSim, FusedChainEqualsSeparateSteps) {
+  Frame frame = simulate(4.0, 2.0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < frame.cloud.points.size(); i += 97) frame.cloud.points[i].y = nan;
+  for (std::size_t i = 5; i < frame.cloud.points.size(); i += 101)
+    frame.cloud.points[i].z = std::numeric_limits<float>::infinity();
+  for (auto method : {rp::GroundMethod::lowest_cell, rp::GroundMethod::ransac_plane})
+    for (const double voxel : {0.15, 0.0}) {
+      rp::PreprocessConfig c;
+      c.ground.method = method;
+      c.voxel.voxel_size = voxel;
+      rp::Preprocessor pre(c);
+      pre.run(frame.cloud);  // a second run reuses the buffers
+      const auto& out = pre.run(frame.cloud);
+      const rp::CropBox box(c.crop);
+      std::vector<rownav::core::PointXYZIRT> cropped, band, ref;
+      std::size_t invalid = 0;
+      for (const auto& p : frame.cloud.points) {
+        invalid += !p.finite();
+        if (p.finite() && box.contains(p.x, p.y, p.z)) cropped.push_back(p);
+      }
+      rp::GroundEstimator ground(c.ground);
+      EXPECT_EQ(out.ground_ok, ground.estimate(cropped));
+      rp::height_band(cropped, ground, c.height, band);
+      rp::VoxelGrid(c.voxel).filter(band, ref);
+      SCOPED_TRACE(testing::Message() << rownav::core::enum_name(method) << " voxel " << voxel);
+      EXPECT_EQ(out.dropped_invalid, invalid);
+      ASSERT_EQ(out.cloud.points.size(), ref.size());
+      ASSERT_EQ(out.points.size(), ref.size());
+      ASSERT_GT(ref.size(), 300u);
+      for (std::size_t i = 0; i < ref.size(); ++i) {
+        const auto &a = out.cloud.points[i], &b = ref[i];
+        ASSERT_EQ(a.x, b.x) << i;  // bit-identical: same points, same summation order
+        ASSERT_EQ(a.y, b.y) << i;
+        ASSERT_EQ(a.z, b.z) << i;
+        ASSERT_EQ(a.intensity, b.intensity) << i;
+        ASSERT_EQ(a.time, b.time) << i;
+        ASSERT_EQ(a.ring, b.ring) << i;
+        ASSERT_EQ(a.column, b.column) << i;
+        ASSERT_EQ(out.points[i], Eigen::Vector2f(b.x, b.y)) << i;
+      }
+    }
 }

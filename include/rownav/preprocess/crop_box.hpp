@@ -51,6 +51,13 @@ class CropBox {
   bool contains(float x, float y, float z) const {
     return z >= z_min_ && z <= z_max_ && contains(x, y);
   }
+  /// contains(x, y, z) without branches (for compaction loops); false for NaN coordinates.
+  bool contains_branchless(float x, float y, float z) const {
+    const float dx = x - sx_, dy = y - sy_;
+    const float r2 = dx * dx + dy * dy;
+    return (z >= z_min_) & (z <= z_max_) & (x >= x_min_) & (x <= x_max_) & (y >= y_min_) &
+           (y <= y_max_) & (r2 >= r2_min_) & (r2 <= r2_max_);
+  }
   const CropBoxConfig& config() const { return config_; }
 
  private:
