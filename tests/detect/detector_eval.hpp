@@ -82,6 +82,63 @@ inline std::vector<std::vector<Eigen::Vector2f>> degenerate_frames() {
 
 /// One simulated OS1-16 frame in corridor `corridor` of a 6-row vineyard, robot turned by
 /// `heading_offset`; the cloud is preprocessed (defaults) into `pre`.
+// The clean-ish sweep both two-line and multi-line detectors must pass (the accuracy
+// bounds): headings -15..15 deg, three spacings, off-centre robot, canopy 0.3 m, noise, gaps,
+// weeds and outliers. `rows_expected` > 0 also checks the number of rows returned.
+template <class Detector>
+void sweep_cleanish(Detector& det, const char* name, std::size_t rows_expected = 0) {
+  double worst_heading = 0.0, worst_lat = 0.0;
+  for (const double spacing : {0.75, 1.8, 2.8})
+    for (int h = -15; h <= 15; h += 5)
+      for (const double off : {-0.2, 0.0, 0.15}) {
+        SyntheticRows s;
+        s.rows = 4, s.spacing = spacing, s.heading = h * kDeg, s.offset = off * spacing;
+        s.gap_probability = 0.1, s.weeds = 60, s.outliers = 30;
+        s.seed = std::uint64_t(100 + h);
+        const auto scene = make_rows(s);
+        const auto obs = det.detect(input_of(scene));
+        const auto e = corridor_error(obs, scene.truth);
+        SCOPED_TRACE(testing::Message() << "spacing " << spacing << " heading " << h << " off " << off);
+        ASSERT_EQ(obs.status, core::DetectionStatus::ok);
+        if (rows_expected > 0) {
+          EXPECT_EQ(obs.rows.size(), rows_expected);
+        }
+        EXPECT_LT(e.heading_deg, 0.5);
+        EXPECT_LT(e.worst(), 0.03);
+        worst_heading = std::max(worst_heading, e.heading_deg);
+        worst_lat = std::max(worst_lat, e.worst());
+      }
+  std::printf("[%s synthetic clean-ish] worst heading %.3f deg, worst lateral %.1f mm\n", name,
+              worst_heading, 1000 * worst_lat);
+}
+
+// Hard scenes (3 cm noise, 30 % gaps, 300 outliers, dense weeds): returns how many of the 12
+// corridors come out right (heading < 1.5 deg, rows < 8 cm) and prints the figures.
+template <class Detector>
+int sweep_hard(Detector& det, const char* name) {
+  int ok = 0, n = 0;
+  double worst_heading = 0.0, worst_lat = 0.0;
+  for (const double spacing : {0.75, 1.8, 2.8})
+    for (int h = -15; h <= 15; h += 10) {
+      SyntheticRows s;
+      s.rows = 5, s.spacing = spacing, s.heading = h * kDeg, s.offset = 0.25 * spacing;
+      s.noise = 0.03, s.gap_probability = 0.3, s.outliers = 300;
+      s.weeds = static_cast<int>(100 * spacing);  // same weed density per m2 for every spacing
+      s.seed = std::uint64_t(7 + h);
+      const auto scene = make_rows(s);
+      const auto e = corridor_error(det.detect(input_of(scene)), scene.truth);
+      ++n;
+      if (!e.found || e.heading_deg > 1.5 || e.worst() > 0.08) continue;
+      ++ok;
+      worst_heading = std::max(worst_heading, e.heading_deg);
+      worst_lat = std::max(worst_lat, e.worst());
+    }
+  std::printf("[%s synthetic hard] %d / %d corridors right (heading < 1.5 deg, rows < 8 cm); "
+              "among them worst heading %.3f deg, worst lateral %.1f mm\n", name, ok, n,
+              worst_heading, 1000 * worst_lat);
+  return ok;
+}
+
 struct SimFrame {
   sim::GroundTruth truth;
   core::PointCloud cloud_base;

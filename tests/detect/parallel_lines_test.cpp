@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 
 #include "detector_eval.hpp"
 
@@ -13,62 +12,13 @@ using test::kDeg;
 
 TEST(ParallelLines, SyntheticSweepCleanish) {
   ParallelLinesDetector det;
-  double worst_heading = 0.0, worst_lat = 0.0;
-  for (const double spacing : {0.75, 1.8, 2.8})
-    for (int h = -15; h <= 15; h += 5)
-      for (const double off : {-0.2, 0.0, 0.15}) {
-        test::SyntheticRows s;
-        s.rows = 4, s.spacing = spacing, s.heading = h * kDeg, s.offset = off * spacing;
-        s.gap_probability = 0.1, s.weeds = 60, s.outliers = 30;
-        s.seed = std::uint64_t(100 + h);
-        const auto scene = test::make_rows(s);
-        const auto obs = det.detect(test::input_of(scene));
-        const auto e = test::corridor_error(obs, scene.truth);
-        SCOPED_TRACE(testing::Message() << "spacing " << spacing << " heading " << h << " off " << off);
-        ASSERT_EQ(obs.status, core::DetectionStatus::ok);
-        EXPECT_EQ(obs.rows.size(), 2u);
-        EXPECT_LT(e.heading_deg, 0.5);
-        EXPECT_LT(e.worst(), 0.03);
-        worst_heading = std::max(worst_heading, e.heading_deg);
-        worst_lat = std::max(worst_lat, e.worst());
-      }
-  std::printf("[parallel_lines synthetic clean-ish] worst heading %.3f deg, worst lateral %.1f mm\n",
-              worst_heading, 1000 * worst_lat);
+  test::sweep_cleanish(det, "parallel_lines", 2);
 }
 
 TEST(ParallelLines, SyntheticHard) {
   ParallelLinesDetector det;
-  int ok = 0, n = 0;
-  double worst_heading = 0.0, worst_lat = 0.0;
-  for (const double spacing : {0.75, 1.8, 2.8})
-    for (int h = -15; h <= 15; h += 10) {
-      test::SyntheticRows s;
-      s.rows = 5, s.spacing = spacing, s.heading = h * kDeg, s.offset = 0.25 * spacing;
-      s.noise = 0.03, s.gap_probability = 0.3, s.outliers = 300;
-      s.weeds = static_cast<int>(100 * spacing);  // same weed density per m2 for every spacing
-      s.seed = std::uint64_t(7 + h);
-      const auto scene = test::make_rows(s);
-      const auto obs = det.detect(test::input_of(scene));
-      const auto e = test::corridor_error(obs, scene.truth);
-      ++n;
-      if (std::getenv("ROWNAV_DEBUG")) {
-        std::printf("sp %.2f h %d: truth", spacing, h);
-        for (const auto& t : scene.truth) std::printf(" %.3f", t.y_at(0.0));
-        std::printf(" | det");
-        for (const auto& r : obs.rows) std::printf(" %.3f(%d, %.1f deg)", r.offset, r.support, r.heading / kDeg);
-        std::printf("\n");
-      }
-      // Good: the corridor is the right one, within the hard-scene bounds.
-      if (!e.found || e.heading_deg > 1.5 || e.worst() > 0.08) continue;
-      ++ok;
-      worst_heading = std::max(worst_heading, e.heading_deg);
-      worst_lat = std::max(worst_lat, e.worst());
-    }
-  std::printf("[parallel_lines synthetic hard] %d / %d corridors right (heading < 1.5 deg, rows < 8 cm); "
-              "among them worst heading %.3f deg, worst lateral %.1f mm\n", ok, n, worst_heading,
-              1000 * worst_lat);
   // Weed strips at this density look like rows of their own to a LiDAR: some scenes are lost.
-  EXPECT_GE(ok, 8);  // measured 8 / 12: RANSAC still pairs a row with a weed strip at times
+  EXPECT_GE(test::sweep_hard(det, "parallel_lines"), 8);  // measured 8 / 12: RANSAC still pairs a row with a weed strip at times
 }
 
 TEST(ParallelLines, OneRowIsDegraded) {
