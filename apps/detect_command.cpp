@@ -1,8 +1,10 @@
 // `rownav detect`: runs a row detector on a cloud, a points CSV, a scans CSV or a recording.
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -150,15 +152,28 @@ void run_recording(const DetectArgs& a, const Emit& emit) {
     emit(p, p.process(rec.scans[i]), static_cast<std::int64_t>(i));
 }
 
+// Removes the partial output unless the run completes (no half-written file on an error).
+struct PartialFile {
+  fs::path path;
+  bool done = false;
+  ~PartialFile() {
+    std::error_code ec;
+    if (!done) fs::remove(path, ec);
+  }
+};
+
 void run(const DetectArgs& a) {
-  std::ofstream out(a.out);
+  PartialFile partial{fs::path(a.out.string() + ".partial")};
+  std::ofstream out(partial.path);
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
   int index = 0;
+  std::array<int, 3> by_status{};  // ok, degraded, no_rows
   std::vector<Eigen::Vector2f> svg_points;
   std::optional<core::RowObservation> svg_obs;
   const Emit emit = [&](const detect::DetectionPipeline& p, const core::RowObservation& obs,
                         std::optional<std::int64_t> frame) {
     out << observation_json(obs, frame).dump() << "\n";
+    ++by_status[static_cast<std::size_t>(obs.status)];
     if (index++ == a.svg_frame) {
       svg_points = p.last_points();
       svg_obs = obs;
@@ -182,7 +197,13 @@ void run(const DetectArgs& a) {
           a.in.string(), "",
           "unknown input type (expected .pcd, .ply, .csv or a recording directory)");
   }
+  out.close();
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
+  fs::rename(partial.path, a.out);
+  partial.done = true;
+  std::cout << a.detector << ": " << index << " frame(s) -> " << a.out.string() << " (ok "
+            << by_status[0] << ", degraded " << by_status[1] << ", no_rows " << by_status[2]
+            << ")\n";
   if (!a.svg.empty()) {
     if (!svg_obs)
       throw std::invalid_argument("--svg-frame " + std::to_string(a.svg_frame) +

@@ -149,6 +149,9 @@ TEST(DetectCli, MalformedInputIsOneErrorLine) {
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_TRUE(std::regex_match(r.err, std::regex("rownav: error: [^\n]+\n")))
         << args << ": " << r.err;
+    // No half-written output: neither the file nor its partial twin is left behind.
+    EXPECT_FALSE(fs::exists(dir / "o.json")) << args;
+    EXPECT_FALSE(fs::exists(dir / "o.json.partial")) << args;
   }
   const Result r = rownav(dir.path(), "detect --detector nope --in ok.csv --out o.json");
   EXPECT_NE(r.err.find("baseline"), std::string::npos) << r.err;
