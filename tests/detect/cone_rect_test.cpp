@@ -8,7 +8,7 @@
 #include <random>
 
 #include "../common/synthetic_rows.hpp"
-#include "corn_rows_eval.hpp"
+#include "detector_eval.hpp"
 
 namespace rownav::detect {
 namespace {
@@ -132,15 +132,13 @@ TEST(ConeRect, Deterministic) {
 
 // Real data with the documented row-crop config over all 1630 frames.
 TEST(ConeRect, CornRows2d) {
-  ConeRectDetector d(row_crop_config());
-  const auto s = test::evaluate_corn([&](const DetectorInput& in) { return d.detect(in); },
-                                     "cone_rect");
-  ASSERT_EQ(s.frames, 1630);
-  // Measured: corridor in 570 frames (35 %), centre median / p90 4.0 / 11.8 cm, heading 2.6 /
-  // 8.2 deg; the trivial baseline (rows at +-0.35 m ahead) gives 6.3 cm and 8.9 deg.
+  const auto s = test::corn_stats(std::make_unique<ConeRectDetector>(row_crop_config()));
+  ASSERT_EQ(s.eval.frames, 1630);
+  // Measured: corridor in 570 frames (35 %), centre median / p95 4.0 / 14.4 cm, heading 2.6 /
+  // 10.5 deg; the trivial baseline (rows at +-0.35 m ahead) gives 6.3 cm and 8.9 deg.
   EXPECT_GT(s.corridors, 500);
-  EXPECT_LT(test::median(s.centre), 0.05);
-  EXPECT_LT(test::median(s.centre_heading), 3.5 * M_PI / 180);
+  EXPECT_LT(s.centre_m.median, 0.05);
+  EXPECT_LT(s.centre_deg.median, 3.5);
 }
 
 TEST(ConeRect, ConfigValidation) {

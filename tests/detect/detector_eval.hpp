@@ -1,18 +1,26 @@
 #pragma once
 // Shared scoring of row detectors against known truth for the detector tests: synthetic scenes,
-// simulated LiDAR frames and the real corn data (corn_rows_2d).
+// simulated LiDAR frames and the real corn data (corn_rows_2d, scored by io::evaluate_corn).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <random>
 #include <numbers>
 #include <vector>
 
 #include "../common/synthetic_rows.hpp"
 #include "rownav/detect/row_detector.hpp"
-#include "rownav/io/cloud_io.hpp"
+#include "rownav/detect/pipeline.hpp"
+#include "rownav/io/detection_eval.hpp"
 #include "rownav/io/row_labels.hpp"
+#include "rownav/io/yaml_config.hpp"
 #include "rownav/preprocess/preprocessor.hpp"
 #include "rownav/sim/field_config.hpp"
 #include "rownav/sim/field_truth.hpp"
@@ -181,58 +189,124 @@ inline std::vector<core::Line2> truth_lines(const sim::GroundTruth& gt) {
   return out;
 }
 
-/// Statistics of a detector over the real corn data set.
-struct CornStats {
-  int frames = 0, lines = 0, detected = 0;
-  double median_lat_05 = 0, median_lat_15 = 0, median_heading_deg = 0;
+// ---- Synthetic scenes, nearest-row scoring (the PEARL tests) ----
+
+/// Errors of the detected row nearest to a truth line, at x.
+struct LineScore {
+  bool found = false;
+  double lateral = std::numeric_limits<double>::infinity();  ///< [m] |y_det(x) - y_true(x)|
+  double heading_deg = 180.0;                                ///< [deg]
 };
 
-inline double median(std::vector<double> v) {
-  if (v.empty()) return 1e9;
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
+/// The detected row closest to `truth` at x (within `gate` [m]).
+inline LineScore score_line(const core::RowObservation& obs, const core::Line2& truth, double x,
+                            double gate = 0.3) {
+  LineScore s;
+  for (const auto& r : obs.rows) {
+    const double d = std::abs(r.line.y_at(x) - truth.y_at(x));
+    if (d > gate || d >= s.lateral) continue;
+    s.found = true;
+    s.lateral = d;
+    const double dh =
+        std::abs(std::remainder(r.line.heading() - truth.heading(), std::numbers::pi));
+    s.heading_deg = dh / kDeg;
+  }
+  return s;
 }
 
-/// Runs a detector over corn_rows_2d (x cropped to [0, 2.5] m) and scores both labelled lines.
-template <class Detector>
-CornStats corn_stats(Detector& det) {
-  const std::string dir = std::string(ROWNAV_SHARED_DATA) + "/corn_rows_2d/";
-  const auto clouds = io::read_points_csv(dir + "scans.csv");
-  const auto labels = io::read_row_labels(dir + "labels.csv");
-  preprocess::PreprocessConfig pc;
-  pc.crop.x_min = 0.0, pc.crop.x_max = 2.5, pc.crop.y_min = -1.2, pc.crop.y_max = 1.2;
-  pc.voxel.voxel_size = 0.0;  // 2D scans are already sparse
-  preprocess::Preprocessor pre(pc);
-  CornStats s;
-  std::vector<double> lat05, lat15, head;
-  std::vector<Eigen::Vector2f> pts;
-  for (const auto& c : clouds) {
-    const auto it = labels.find(static_cast<std::int64_t>(c.stamp));
-    if (it == labels.end()) continue;
-    pts.clear();
-    for (const auto& p : c.points) pts.emplace_back(p.x, p.y);
-    pre.run(pts);
-    const auto obs = det.detect(pre.input(c.stamp));
-    ++s.frames;
-    for (int side = 0; side < 2; ++side) {
-      const core::Line2 truth = (side == 0 ? it->second.left : it->second.right).line();
-      ++s.lines;
-      const int idx = side == 0 ? obs.left : obs.right;
-      if (idx < 0) continue;
-      ++s.detected;
-      const auto& l = obs.rows[std::size_t(idx)].line;
-      lat05.push_back(std::abs(l.y_at(0.5) - truth.y_at(0.5)));
-      lat15.push_back(std::abs(l.y_at(1.5) - truth.y_at(1.5)));
-      double dh = std::abs(l.heading() - truth.heading());
-      head.push_back(std::min(dh, std::numbers::pi - dh) / kDeg);
-    }
+/// Worst of the two truth rows around the robot (the middle two of a symmetric scene), at x.
+struct CorridorScore {
+  int found = 0;
+  double lateral = 0.0;      ///< [m] worst
+  double heading_deg = 0.0;  ///< [deg] worst
+};
+
+inline CorridorScore score_corridor(const core::RowObservation& obs,
+                                    const std::vector<core::Line2>& truth, double x) {
+  CorridorScore c;
+  int right = -1, left = -1;
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    const double y = truth[k].y_at(x);
+    if (y < 0.0) right = static_cast<int>(k);
+    if (y >= 0.0 && left < 0) left = static_cast<int>(k);
   }
-  s.median_lat_05 = median(lat05), s.median_lat_15 = median(lat15);
-  s.median_heading_deg = median(head);
-  std::printf("[corn_rows_2d] %d frames, %d / %d lines detected (%.1f %%); median lateral error "
-              "%.1f cm at x = 0.5 m, %.1f cm at 1.5 m; median heading error %.2f deg\n",
-              s.frames, s.detected, s.lines, 100.0 * s.detected / std::max(1, s.lines),
-              100 * s.median_lat_05, 100 * s.median_lat_15, s.median_heading_deg);
+  for (const int k : {right, left}) {
+    if (k < 0) continue;
+    const LineScore s = score_line(obs, truth[static_cast<std::size_t>(k)], x);
+    c.found += s.found ? 1 : 0;
+    c.lateral = std::max(c.lateral, s.lateral);
+    c.heading_deg = std::max(c.heading_deg, s.heading_deg);
+  }
+  return c;
+}
+
+// ---- Real corn rows (corn_rows_2d): the library's definitions (io::evaluate_corn) ----
+
+/// The row_crop preprocessing (`preprocess:` of config/detect/row_crop.yaml) in front of `det`.
+inline detect::DetectionPipeline row_crop_pipeline(std::unique_ptr<detect::RowDetector> det) {
+  const auto file = std::filesystem::path(ROWNAV_SOURCE_DIR) / "config/detect/row_crop.yaml";
+  return detect::DetectionPipeline(io::load_config<preprocess::PreprocessConfig>(file, "preprocess"),
+                                   std::move(det));
+}
+
+/// Forwards to a detector and keeps the corridor of every frame, by stamp (io::evaluate_corn
+/// scores rows only).
+class CorridorRecorder : public detect::RowDetector {
+ public:
+  CorridorRecorder(std::unique_ptr<detect::RowDetector> inner,
+                   std::map<std::int64_t, std::optional<core::CorridorObservation>>& out)
+      : inner_(std::move(inner)), out_(out) {}
+  std::string_view name() const override { return inner_->name(); }
+  core::RowObservation detect(const detect::DetectorInput& in) override {
+    auto obs = inner_->detect(in);
+    out_[std::llround(in.stamp)] = obs.corridor;
+    return obs;
+  }
+
+ private:
+  std::unique_ptr<detect::RowDetector> inner_;
+  std::map<std::int64_t, std::optional<core::CorridorObservation>>& out_;
+};
+
+/// A detector on corn_rows_2d: the metrics (io::CornEval) and, for detectors that give a
+/// corridor, its centre at x = 0 and heading against the labelled lines' centre and mean heading.
+struct CornStats {
+  io::CornEval eval;
+  int corridors = 0;              ///< frames with a corridor
+  io::Stat centre_m, centre_deg;  ///< [m], [deg] over those frames
+};
+
+/// Runs `det` behind row_crop_pipeline on every `stride`-th labelled frame and prints the figures.
+inline CornStats corn_stats(std::unique_ptr<detect::RowDetector> det, int stride = 1) {
+  const auto dir = std::filesystem::path(ROWNAV_SHARED_DATA) / "corn_rows_2d";
+  std::map<std::int64_t, std::optional<core::CorridorObservation>> corridors;
+  auto pipeline = row_crop_pipeline(std::make_unique<CorridorRecorder>(std::move(det), corridors));
+  CornStats s;
+  s.eval = io::evaluate_corn(pipeline, dir, stride);
+  std::vector<double> centre, heading;
+  for (const auto& [frame, label] : io::read_row_labels(dir / "labels.csv")) {
+    const auto it = corridors.find(frame);
+    if (it == corridors.end() || !it->second) continue;
+    ++s.corridors;
+    core::Line2 l = label.left.line(), r = label.right.line();
+    if (l.direction.x() < 0.0) l.direction = -l.direction;  // forward, as the rows
+    if (r.direction.x() < 0.0) r.direction = -r.direction;
+    const Eigen::Vector2d d = l.direction + r.direction;
+    centre.push_back(std::abs(it->second->offset - 0.5 * (l.y_at(0.0) + r.y_at(0.0))));
+    heading.push_back(std::abs(std::remainder(it->second->heading - std::atan2(d.y(), d.x()),
+                                              2 * std::numbers::pi)) / kDeg);
+  }
+  s.centre_m = io::make_stat(std::move(centre));
+  s.centre_deg = io::make_stat(std::move(heading));
+  const io::CornEval& e = s.eval;
+  std::printf("[%s corn_rows_2d] %d frames, rows output for %.1f %% / detected %.1f %% of %d "
+              "lines; median lateral %.1f cm at x = 0.5 m, %.1f cm at 1.5 m; median row heading "
+              "%.2f deg, heading %.2f deg; corridor in %d frames, centre median / p95 %.1f / "
+              "%.1f cm, heading %.2f / %.2f deg\n",
+              e.detector.c_str(), e.frames, 100 * e.output_rate, 100 * e.detection_rate, e.lines,
+              100 * e.lateral_05_m.median, 100 * e.lateral_15_m.median, e.row_heading_deg.median,
+              e.heading_deg.median, s.corridors, 100 * s.centre_m.median, 100 * s.centre_m.p95,
+              s.centre_deg.median, s.centre_deg.p95);
   return s;
 }
 

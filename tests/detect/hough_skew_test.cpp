@@ -130,12 +130,11 @@ TEST(HoughSkew, SimulatedVineyardFrame) {
 }
 
 TEST(HoughSkew, RealCornRows) {
-  HoughSkewDetector det(HoughSkewConfig::row_crop());
-  const auto s = test::corn_stats(det);
+  const auto s = test::corn_stats(std::make_unique<HoughSkewDetector>(HoughSkewConfig::row_crop())).eval;
   ASSERT_EQ(s.frames, 1630);
-  EXPECT_GE(s.detected, 0.98 * s.lines);
-  EXPECT_LT(s.median_lat_05, 0.05);  // trivial baseline 7.8 cm
-  EXPECT_LT(s.median_heading_deg, 4.0);  // trivial baseline 8.6 deg
+  EXPECT_GE(s.output_rate, 0.98);
+  EXPECT_LT(s.lateral_05_m.median, 0.05);  // trivial baseline 7.8 cm
+  EXPECT_LT(s.row_heading_deg.median, 4.0);  // trivial baseline 8.6 deg
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "row_scoring.hpp"
+#include "detector_eval.hpp"
 #include "rownav/detect/pearl.hpp"
 #include "rownav/detect/ransac_lines.hpp"
 #include "rownav/io/cloud_io.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "../common/synthetic_rows.hpp"
-#include "row_scoring.hpp"
+#include "detector_eval.hpp"
 #include "rownav/detect/ransac_lines.hpp"
 
 namespace rownav::detect {
