@@ -1,18 +1,15 @@
 // End-to-end tests of `rownav detect`: the real binary (ROWNAV_BINARY) on small inputs written
 // by the tests, in a fresh temporary directory.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "common/cli_runner.hpp"
 #include "common/synthetic_rows.hpp"
 #include "rownav/io/cloud_io.hpp"
 
@@ -20,57 +17,16 @@ namespace rownav {
 namespace {
 
 namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("rownav_detect_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  fs::path operator/(const std::string& rel) const { return path_ / rel; }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_file;
+using test::Result;
+using test::rownav;
+using test::TempDir;
 
 std::vector<std::string> lines_of(const fs::path& file) {
   std::vector<std::string> out;
   std::ifstream in(file);
   for (std::string l; std::getline(in, l);) out.push_back(l);
   return out;
-}
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-Result rownav(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / ".stdout", err = dir / ".stderr";
-  const std::string cmd = "cd '" + dir.string() + "' && '" + std::string(ROWNAV_BINARY) + "' " +
-                          args + " > '" + out.string() + "' 2> '" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(out), read_file(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
 }
 
 // The number after "key": in a JSON line (first occurrence after `from`).
