@@ -42,6 +42,8 @@ core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_li
 
 core::RowObservation DetectionPipeline::process(const core::Scan2D& scan_lidar) {
   const Eigen::Isometry2f T = planar_mount(T_base_lidar_).cast<float>();
+  cloud_base_.points.clear();
+  cloud_base_.stamp = scan_lidar.stamp;
   points_base_.clear();
   for (std::size_t i = 0; i < scan_lidar.ranges.size(); ++i) {
     if (!scan_lidar.valid(i)) continue;
@@ -56,6 +58,8 @@ core::RowObservation DetectionPipeline::process(const core::Scan2D& scan_lidar) 
 
 core::RowObservation DetectionPipeline::process_points(std::span<const Eigen::Vector2f> points_base,
                                                        double stamp) {
+  cloud_base_.points.clear();
+  cloud_base_.stamp = stamp;
   preprocessor_.run(points_base);
   return detect(stamp);
 }

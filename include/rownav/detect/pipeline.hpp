@@ -36,6 +36,9 @@ class DetectionPipeline {
   const Eigen::Isometry3d& T_base_lidar() const { return T_base_lidar_; }
   /// Points handed to the detector in the last frame (base frame, after preprocessing).
   const std::vector<Eigen::Vector2f>& last_points() const { return last_points_; }
+  /// The last 3D frame in the base frame before preprocessing (raw heights, NaN possible); empty
+  /// after a planar scan. End-of-row tests count points in height bands of it.
+  const core::PointCloud& last_cloud_base() const { return cloud_base_; }
 
  private:
   core::RowObservation detect(double stamp);

@@ -1,0 +1,69 @@
+#pragma once
+/// @file row_end_poles.hpp Row ends ("poles") from the points around the robot, and the point
+/// the robot aims at from them (003_25dc0df51a1e5faf.txt sec. II-C).
+///
+/// CONTRACT (signatures) shared by navigate/ and the closed-loop runner. Points near the row ends
+/// are Euclidean-clustered; each cluster is a pole candidate; the row ends are chosen by the
+/// Nearest policy or the Line-fitting policy (RANSAC, 100 iterations, 0.1 m threshold).
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/line2.hpp"
+
+namespace rownav::navigate {
+
+/// How row ends are picked among the clusters (003 sec. II-C).
+enum class RowEndPolicy : std::uint8_t { nearest, line_fitting };
+
+/// Configuration of the row-end estimator (the implementation owns and may extend the fields).
+struct RowEndConfig {
+  RowEndPolicy policy = RowEndPolicy::line_fitting;  ///< 003 sec. II-C
+  double cluster_tolerance = 0.3;  ///< [m] Euclidean clustering distance
+  int min_cluster_points = 3;      ///< [points] smaller clusters are ignored
+  int ransac_iterations = 100;     ///< [-] 003 sec. II-C
+  double ransac_threshold = 0.1;   ///< [m] 003 sec. II-C
+  std::uint64_t seed = 1;          ///< RANSAC seed
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("policy", s.policy);
+    v("cluster_tolerance", s.cluster_tolerance);
+    v("min_cluster_points", s.min_cluster_points);
+    v("ransac_iterations", s.ransac_iterations);
+    v("ransac_threshold", s.ransac_threshold);
+    v("seed", s.seed);
+  }
+  void validate() const;
+};
+
+/// Row ends seen in one frame, base frame.
+struct RowEnds {
+  std::vector<Eigen::Vector2d> poles;         ///< every pole candidate (cluster centroid)
+  std::optional<Eigen::Vector2d> left_end;    ///< end of the row on the left of the corridor
+  std::optional<Eigen::Vector2d> right_end;   ///< end of the row on the right
+  /// Line through the row ends of the block (line_fitting policy), oriented left to right
+  /// across the rows; the headland navigation runs parallel to it.
+  std::optional<core::Line2> end_line;
+};
+
+/// Estimates row ends from 2D points in the base frame. `row_heading` [rad] is the rows'
+/// direction in the base frame (from the tracker), `spacing` [m] their spacing (0: unknown).
+/// Never throws.
+RowEnds estimate_row_ends(std::span<const Eigen::Vector2f> points_base, double row_heading,
+                          double spacing, const RowEndConfig& config);
+
+}  // namespace rownav::navigate
+
+template <>
+struct rownav::core::EnumNames<rownav::navigate::RowEndPolicy> {
+  using E = rownav::navigate::RowEndPolicy;
+  static constexpr std::array<std::pair<E, std::string_view>, 2> values{
+      {{E::nearest, "nearest"}, {E::line_fitting, "line_fitting"}}};
+};

@@ -1,0 +1,81 @@
+#pragma once
+/// @file row_tracker.hpp The interface of a row tracker and its per-frame output.
+///
+/// CONTRACT shared by the trackers (model_matching, line_ekf, model_filter), navigate/ and the
+/// closed-loop runner. Implementations may add fields but must keep these.
+#include <array>
+#include <optional>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/line2.hpp"
+#include "rownav/core/pose2.hpp"
+#include "rownav/core/row_observation.hpp"
+
+namespace rownav::track {
+
+/// Tracking state of a frame.
+enum class TrackStatus : std::uint8_t {
+  tracking,  ///< the row models were updated by this frame's observation
+  coasting,  ///< no usable observation: models carried by odometry (through a gap)
+  lost       ///< no model, or coasting for longer than the tracker allows
+};
+
+/// A tracked row model expressed in the base frame of the current frame.
+struct TrackedRow {
+  int id = -1;                ///< persistent model id
+  core::Line2 line_base;      ///< oriented towards +x
+  double offset = 0.0;        ///< [m] lateral position at x = 0 (left +)
+  double heading = 0.0;       ///< [rad] direction in the base frame
+  double x_min = 0.0;         ///< [m] extent of the model's supporting points along x (base)
+  double x_max = 0.0;         ///< [m]
+  int support = 0;            ///< points / observations behind the model
+  double age = 0.0;           ///< [s] since the model was created
+  double last_seen = 0.0;     ///< [s] stamp of the last observation that updated it
+};
+
+/// A tracker's answer for one frame.
+struct RowTracking {
+  double stamp = 0.0;  ///< [s]
+  TrackStatus status = TrackStatus::lost;
+  double confidence = 0.0;  ///< [0, 1]
+  /// [m] signed offset of the base origin from the corridor centre line (left +); the corridor
+  /// detector's CorridorObservation::offset is -lateral_error.
+  double lateral_error = 0.0;
+  double heading_error = 0.0;  ///< [rad] robot heading minus the corridor heading
+  core::Line2 centre_line_base;  ///< corridor centre line in the base frame, oriented forward
+  double row_spacing = 0.0;      ///< [m] estimated spacing between adjacent rows (0: unknown)
+  std::vector<TrackedRow> rows;  ///< tracked models, sorted right (y < 0) to left
+  int left = -1;   ///< index in rows of the followed left row, -1 if none
+  int right = -1;  ///< index in rows of the followed right row, -1 if none
+  /// [m] signed offset from the chosen implement row + offset (TrackerConfig::target_row), when
+  /// one is configured and tracked.
+  std::optional<double> target_lateral_error;
+  double steepness = 0.0;  ///< [-] |tan| of the followed models' angle (Malavazi 2018 safety)
+  double time_since_observation = 0.0;  ///< [s] since the last frame with rows
+};
+
+/// A row tracker. update() never throws: stale frames, time going backwards, odometry jumps and
+/// no_rows observations are reflected in the status.
+class RowTracker {
+ public:
+  virtual ~RowTracker() = default;
+  /// Short name as on the command line (model_matching, line_ekf, model_filter).
+  virtual std::string_view name() const = 0;
+  /// One frame: the detector's observation (base frame at obs.stamp) and the odometry pose of
+  /// the base at that stamp.
+  virtual RowTracking update(const core::RowObservation& obs, const core::Pose2& T_odom_base) = 0;
+  /// Forgets every model (e.g. after a headland turn, before entering the next corridor).
+  virtual void reset() = 0;
+};
+
+}  // namespace rownav::track
+
+template <>
+struct rownav::core::EnumNames<rownav::track::TrackStatus> {
+  using E = rownav::track::TrackStatus;
+  static constexpr std::array<std::pair<E, std::string_view>, 3> values{
+      {{E::tracking, "tracking"}, {E::coasting, "coasting"}, {E::lost, "lost"}}};
+};
