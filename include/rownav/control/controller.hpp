@@ -13,14 +13,14 @@ namespace rownav::control {
 /// What a controller sees each cycle. Errors follow track::RowTracking: lateral left +,
 /// heading = robot minus path.
 struct ControlInput {
-  double stamp = 0.0;           ///< [s]
-  double dt = 0.1;              ///< [s] since the previous cycle
-  double lateral_error = 0.0;   ///< [m] base origin from the path (left +)
-  double heading_error = 0.0;   ///< [rad] robot heading minus the path heading
-  core::Line2 path_base;        ///< path to follow (a line) in the base frame, oriented forward
-  double steepness = 0.0;       ///< [-] Malavazi 2018 steep-model indicator (0 when unknown)
-  double speed_ref = 0.5;       ///< [m/s] desired forward speed
-  double speed = 0.0;           ///< [m/s] current forward speed estimate
+  double stamp = 0.0;          ///< [s]
+  double dt = 0.1;             ///< [s] since the previous cycle
+  double lateral_error = 0.0;  ///< [m] base origin from the path (left +)
+  double heading_error = 0.0;  ///< [rad] robot heading minus the path heading
+  core::Line2 path_base;       ///< path to follow (a line) in the base frame, oriented forward
+  double steepness = 0.0;      ///< [-] Malavazi 2018 steep-model indicator (0 when unknown)
+  double speed_ref = 0.5;      ///< [m/s] desired forward speed
+  double speed = 0.0;          ///< [m/s] current forward speed estimate
   /// [m] distance to the nearest obstacle in the front rectangle (infinity when clear)
   double obstacle_distance = std::numeric_limits<double>::infinity();
 };
