@@ -22,13 +22,28 @@ namespace rownav::navigate {
 
 /// Configuration of the end-of-row detector (the implementation owns and may extend the fields).
 struct EndOfRowConfig {
-  double band_z_min = 0.5;      ///< [m] lowest point height counted (001 eq. 24)
-  double band_z_max = 1.3;      ///< [m] highest point height counted (001 eq. 24)
-  double box_x_min = 3.0;       ///< [m] near edge of the look-ahead box (001 sec. 2.5)
-  double box_x_max = 5.0;       ///< [m] far edge of the look-ahead box
-  int point_threshold = 20;     ///< [points] fewer than this in the box: row end ahead (001 eq. 25)
-  int confirm_frames = 3;       ///< [frames] consecutive positive frames before declaring the end
-  double exit_distance = 1.0;   ///< [m] driven past the last plant (by odometry) before turning
+  double band_z_min = 0.5;  ///< [m] lowest point height counted (001 eq. 24)
+  double band_z_max = 1.3;  ///< [m] highest point height counted (001 eq. 24)
+  double box_x_min = 3.0;   ///< [m] near edge of the look-ahead box (001 sec. 2.5)
+  double box_x_max = 5.0;   ///< [m] far edge of the look-ahead box
+  /// [points] fewer than this on each side of the box: row end ahead (001 sec. 4: "n < 30")
+  int point_threshold = 30;
+  int confirm_frames = 3;      ///< [frames] consecutive positive frames before declaring the end
+  double exit_distance = 1.0;  ///< [m] driven past the last plant (by odometry) before turning
+  /// [m] half width of the box when the row spacing is unknown (001 eq. 24: "3 m wide around the
+  /// robot")
+  double default_half_width = 1.5;
+  /// [m] with a known row spacing s the box spans |y| <= s / 2 + this: the two followed rows and
+  /// their canopy (003 sec. II-C: "spanning the entire corridor and part of both row sides")
+  double row_margin = 0.5;
+  /// [points] |N_k - N_k-1| above this: the count changes abruptly, the row end approaches
+  /// (001 eq. 24, N_CONST; the paper gives no value)
+  int count_jump = 30;
+  /// [points] planar scans (no cloud): fewer points than this in the whole box means the
+  /// corridor is over (003 sec. II-C: "the number of points in the rectangle approaches zero")
+  int scan_point_threshold = 3;
+  bool use_extent = true;        ///< also end when the followed rows' x_max < extent_distance
+  double extent_distance = 3.0;  ///< [m] followed rows ending closer than this: row end ahead
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -39,6 +54,12 @@ struct EndOfRowConfig {
     v("point_threshold", s.point_threshold);
     v("confirm_frames", s.confirm_frames);
     v("exit_distance", s.exit_distance);
+    v("default_half_width", s.default_half_width);
+    v("row_margin", s.row_margin);
+    v("count_jump", s.count_jump);
+    v("scan_point_threshold", s.scan_point_threshold);
+    v("use_extent", s.use_extent);
+    v("extent_distance", s.extent_distance);
   }
   void validate() const;
 };
@@ -50,7 +71,12 @@ struct EndOfRowResult {
   /// [m] estimated distance along x from the base to the row end (the last plants), when known;
   /// negative once the base has passed it.
   std::optional<double> distance_to_end;
-  int box_points = 0;          ///< points counted in the look-ahead box this frame
+  int box_points = 0;           ///< points counted in the look-ahead box this frame
+  int left_points = 0;          ///< of which y > 0 (3D cloud only)
+  int right_points = 0;         ///< of which y <= 0 (3D cloud only)
+  bool frame_positive = false;  ///< this frame alone says "row end" (before confirmation)
+  /// 001 eq. (24) H1 this frame: |N_k - N_k-1| > count_jump (the end approaches)
+  bool count_jump = false;
 };
 
 /// End-of-row detector. Stateful (confirmation counter); update() never throws.
@@ -58,7 +84,8 @@ class EndOfRowDetector {
  public:
   explicit EndOfRowDetector(const EndOfRowConfig& config = {});
   /// One frame: the 3D cloud in the base frame (raw heights; may be empty for a planar scan, in
-  /// which case `points_base` 2D points are counted instead), and the tracker's output.
+  /// which case `points_base` 2D points are counted instead), and the tracker's output. Once
+  /// declared, the end stays declared until reset() (the navigator resets on the next corridor).
   EndOfRowResult update(const core::PointCloud& cloud_base,
                         std::span<const Eigen::Vector2f> points_base,
                         const track::RowTracking& tracking);
@@ -68,6 +95,8 @@ class EndOfRowDetector {
  private:
   EndOfRowConfig config_;
   int positives_ = 0;
+  int previous_count_ = -1;
+  bool declared_ = false;
 };
 
 }  // namespace rownav::navigate

@@ -25,11 +25,16 @@ enum class RowEndPolicy : std::uint8_t { nearest, line_fitting };
 /// Configuration of the row-end estimator (the implementation owns and may extend the fields).
 struct RowEndConfig {
   RowEndPolicy policy = RowEndPolicy::line_fitting;  ///< 003 sec. II-C
-  double cluster_tolerance = 0.3;  ///< [m] Euclidean clustering distance
-  int min_cluster_points = 3;      ///< [points] smaller clusters are ignored
-  int ransac_iterations = 100;     ///< [-] 003 sec. II-C
-  double ransac_threshold = 0.1;   ///< [m] 003 sec. II-C
-  std::uint64_t seed = 1;          ///< RANSAC seed
+  double cluster_tolerance = 0.3;                    ///< [m] Euclidean clustering distance
+  int min_cluster_points = 3;                        ///< [points] smaller clusters are ignored
+  int ransac_iterations = 100;                       ///< [-] 003 sec. II-C
+  double ransac_threshold = 0.1;                     ///< [m] 003 sec. II-C
+  std::uint64_t seed = 1;                            ///< RANSAC seed
+  /// [m] depth of a cluster's end slice (along the rows, at its extreme nearest the robot) whose
+  /// centroid is the pole candidate (rownav: a row seen from its end is one long cluster)
+  double end_slice = 0.1;
+  /// [deg] the end line may deviate this much from perpendicular to the rows
+  double max_line_angle_deg = 30.0;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -39,15 +44,18 @@ struct RowEndConfig {
     v("ransac_iterations", s.ransac_iterations);
     v("ransac_threshold", s.ransac_threshold);
     v("seed", s.seed);
+    v("end_slice", s.end_slice);
+    v("max_line_angle_deg", s.max_line_angle_deg);
   }
   void validate() const;
 };
 
 /// Row ends seen in one frame, base frame.
 struct RowEnds {
-  std::vector<Eigen::Vector2d> poles;         ///< every pole candidate (cluster centroid)
-  std::optional<Eigen::Vector2d> left_end;    ///< end of the row on the left of the corridor
-  std::optional<Eigen::Vector2d> right_end;   ///< end of the row on the right
+  /// every pole candidate: centroid of a cluster's end slice (a lone pole: its centroid)
+  std::vector<Eigen::Vector2d> poles;
+  std::optional<Eigen::Vector2d> left_end;   ///< end of the row on the left of the corridor
+  std::optional<Eigen::Vector2d> right_end;  ///< end of the row on the right
   /// Line through the row ends of the block (line_fitting policy), oriented left to right
   /// across the rows; the headland navigation runs parallel to it.
   std::optional<core::Line2> end_line;

@@ -1,0 +1,118 @@
+#include "rownav/navigate/end_of_row.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace rownav::navigate {
+
+namespace {
+
+struct BoxCount {
+  int left = 0, right = 0;
+  double x_last = -1.0;  // [m] farthest counted point with x <= box_x_max (-1: none)
+};
+
+// Half width of the box: the two followed rows when the spacing is known (003 sec. II-C), the
+// paper's 3 m wide range otherwise (001 eq. 24).
+double half_width(const EndOfRowConfig& c, const track::RowTracking& t) {
+  if (std::isfinite(t.row_spacing) && t.row_spacing > 0.0)
+    return 0.5 * t.row_spacing + c.row_margin;
+  return c.default_half_width;
+}
+
+// 3D cloud: points of the height band (001 sec. 4: 0.5-1.3 m) in x in [box_x_min, box_x_max],
+// per side. x_last is taken over [0, box_x_max]: the last plant seen before the box.
+BoxCount count_cloud(const core::PointCloud& cloud, const EndOfRowConfig& c, double hw) {
+  BoxCount n;
+  for (const auto& p : cloud.points) {
+    if (!p.finite() || p.z < c.band_z_min || p.z > c.band_z_max || std::abs(p.y) > hw) continue;
+    if (p.x >= 0.0 && p.x <= c.box_x_max) n.x_last = std::max(n.x_last, double(p.x));
+    if (p.x < c.box_x_min || p.x > c.box_x_max) continue;
+    (p.y > 0.0f ? n.left : n.right) += 1;
+  }
+  return n;
+}
+
+// Planar scan: every point in the rectangle (003 sec. II-C), counted as "left" for the total.
+BoxCount count_scan(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw) {
+  BoxCount n;
+  for (const auto& p : pts) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::abs(p.y()) > hw) continue;
+    if (p.x() >= 0.0f && p.x() <= c.box_x_max) n.x_last = std::max(n.x_last, double(p.x()));
+    if (p.x() >= c.box_x_min && p.x() <= c.box_x_max) ++n.left;
+  }
+  return n;
+}
+
+// The followed rows' extent: the smaller x_max of the followed rows, when tracked.
+std::optional<double> followed_extent(const track::RowTracking& t) {
+  if (t.status != track::TrackStatus::tracking) return std::nullopt;
+  std::optional<double> out;
+  for (const int i : {t.left, t.right}) {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) continue;
+    const double x = t.rows[static_cast<std::size_t>(i)].x_max;
+    if (std::isfinite(x)) out = out ? std::min(*out, x) : x;
+  }
+  return out;
+}
+
+}  // namespace
+
+void EndOfRowConfig::validate() const {
+  core::check(band_z_min < band_z_max, "band_z_min", "must be < band_z_max");
+  core::check_non_negative(box_x_min, "box_x_min");
+  core::check(box_x_min < box_x_max, "box_x_min", "must be < box_x_max");
+  core::check_positive(point_threshold, "point_threshold");
+  core::check_positive(confirm_frames, "confirm_frames");
+  core::check_non_negative(exit_distance, "exit_distance");
+  core::check_positive(default_half_width, "default_half_width");
+  core::check_non_negative(row_margin, "row_margin");
+  core::check_non_negative(count_jump, "count_jump");
+  core::check_positive(scan_point_threshold, "scan_point_threshold");
+  core::check_positive(extent_distance, "extent_distance");
+}
+
+EndOfRowDetector::EndOfRowDetector(const EndOfRowConfig& config)
+    : config_((config.validate(), config)) {}
+
+void EndOfRowDetector::reset() {
+  positives_ = 0;
+  previous_count_ = -1;
+  declared_ = false;
+}
+
+EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
+                                        std::span<const Eigen::Vector2f> points_base,
+                                        const track::RowTracking& tracking) {
+  const EndOfRowConfig& c = config_;
+  const double hw = half_width(c, tracking);
+  const bool planar = cloud_base.empty();
+  const BoxCount n = planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw);
+  EndOfRowResult r;
+  r.box_points = n.left + n.right;
+  r.left_points = planar ? 0 : n.left;
+  r.right_points = planar ? 0 : n.right;
+  // 001 eq. (24): an abrupt change of the count announces the end.
+  r.count_jump = previous_count_ >= 0 && std::abs(r.box_points - previous_count_) > c.count_jump;
+  previous_count_ = r.box_points;
+  // 001 eq. (25) / sec. 4 (n < 30 on the left and right sides); 003 sec. II-C for planar scans.
+  const bool count_end = planar ? r.box_points < c.scan_point_threshold
+                                : n.left < c.point_threshold && n.right < c.point_threshold;
+  const std::optional<double> extent = followed_extent(tracking);
+  const bool extent_end = c.use_extent && extent && *extent < c.extent_distance;
+  r.frame_positive = count_end || extent_end;
+  positives_ = r.frame_positive ? positives_ + 1 : 0;
+  declared_ = declared_ || positives_ >= c.confirm_frames;
+  r.end_detected = declared_;
+  // Distance to the last plants: the tracked extent, else the last band point before the box.
+  if (extent)
+    r.distance_to_end = *extent;
+  else if (count_end && n.x_last >= 0.0)
+    r.distance_to_end = n.x_last;
+  // Share of the confirmation window seen positive; 1 once declared.
+  r.confidence = declared_ ? 1.0 : std::min(1.0, double(positives_) / c.confirm_frames);
+  return r;
+}
+
+}  // namespace rownav::navigate
