@@ -139,10 +139,14 @@ class Batch {
       finish(i, CellStatus::resumed, "resumed: summary.json exists, not run again");
       return;
     }
-    fs::create_directories(dir);
+    // A fresh start: no half-written output of an earlier, killed attempt.
+    fs::remove_all(dir);
+    fs::remove_all(fs::path(dir.string() + ".partial"));
+    fs::create_directories(dir.parent_path());
     int error = 0;
-    const pid_t pid = spawn(o_.runner, cells_[i].run_args(dir), dir / "log.txt", error);
+    const pid_t pid = spawn(o_.runner, cells_[i].run_args(dir), running_log(i), error);
     if (pid < 0) {
+      store_log(i);
       finish(i, CellStatus::failed, std::string("cannot start runner: ") + std::strerror(error));
       return;
     }
@@ -160,6 +164,7 @@ class Batch {
       char took[32];
       std::snprintf(took, sizeof took, " in %.1f s", secs);
       const fs::path dir = cell_dir(out_, cells_[it->index]);
+      store_log(it->index);
       if (fs::is_regular_file(dir / "summary.json"))
         finish(it->index, CellStatus::ran, "done (" + exit_text(status) + ")" + took);
       else
@@ -184,12 +189,25 @@ class Batch {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
       }
+      store_log(r.index);
       result_.cells[r.index].detail = "interrupted";
     }
     if (o_.progress)
       *o_.progress << "bench: interrupted: " << running_.size()
                    << " running cell(s) terminated; run again to resume\n";
     running_.clear();
+  }
+
+  // The log is written next to the cell's folder while it runs (the runner may create or
+  // rename the folder itself), then moved into it.
+  fs::path running_log(std::size_t i) const {
+    return cell_dir(out_, cells_[i]).string() + ".log.txt";
+  }
+  void store_log(std::size_t i) const {
+    const fs::path dir = cell_dir(out_, cells_[i]);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    fs::rename(running_log(i), dir / "log.txt", ec);
   }
 
   void finish(std::size_t i, CellStatus s, const std::string& detail) {

@@ -94,6 +94,7 @@ BenchScenario load_scenario(const fs::path& file, bool check_files) {
   BenchScenario s;
   decode_config(root, s, file.string());
   s.base_dir = (file.parent_path() / s.root).lexically_normal();
+  if (!s.base_dir.empty() && !s.base_dir.has_filename()) s.base_dir = s.base_dir.parent_path();
   if (s.base_dir.empty()) s.base_dir = ".";
   if (check_files) check_files_exist(s, root, file.string());
   return s;

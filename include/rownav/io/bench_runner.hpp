@@ -1,9 +1,10 @@
 #pragma once
 /// @file bench_runner.hpp Runs benchmark cells as child processes (`RUNNER run <options> --out
 /// OUT/runs/<id>`), several at a time, resumably: a cell whose folder holds a summary.json is not
-/// run again. Each child's stdout and stderr go to OUT/runs/<id>/log.txt (after the command
-/// line). One progress line per finished cell on the progress stream. SIGINT / SIGTERM stop
-/// launching, terminate the running children and wait for them.
+/// run again (any other content of its folder and <id>.partial is removed before it runs). Each
+/// child's stdout and stderr go to OUT/runs/<id>/log.txt (after the command line). One progress
+/// line per finished cell on the progress stream. SIGINT / SIGTERM stop launching, terminate the
+/// running children and wait for them.
 #include <filesystem>
 #include <iostream>
 #include <string>
