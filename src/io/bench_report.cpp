@@ -106,7 +106,11 @@ std::string tables_markdown(const std::string& scenario, const std::vector<Resul
       for (const auto& v : r.values) md << " " << format_value(v) << " |";
       md << "\n";
     }
-    if (t.plot_column >= 0) md << "\n![" << t.key << "](plots/" << t.key << ".svg)\n";
+    const bool plotted =
+        t.plot_column >= 0 && std::any_of(t.rows.begin(), t.rows.end(), [&](const ResultRow& r) {
+          return r.values[static_cast<std::size_t>(t.plot_column)].has_value();
+        });
+    if (plotted) md << "\n![" << t.key << "](plots/" << t.key << ".svg)\n";
     md << "\n";
   }
   return md.str();

@@ -62,8 +62,7 @@ TEST(BenchScenario, MissingFileAndEmptyListAreErrors) {
   TempDir dir("bench");
   auto file = test::write_test_scenario(dir.path(), "[pearl]", "[1]");
   fs::remove(dir / "robot.yaml");
-  EXPECT_NE(load_error(file).find(":6:14: matrices[0].robots[0]: no such file"),
-            std::string::npos)
+  EXPECT_NE(load_error(file).find(":6:14: matrices[0].robots[0]: no such file"), std::string::npos)
       << load_error(file);
   EXPECT_NO_THROW(load_scenario(file, false));
   file = test::write_test_scenario(dir.path(), "[]", "[1]");
@@ -97,8 +96,8 @@ TEST(BenchMatrix, CountsAndStableUniqueIds) {
 
 TEST(BenchMatrix, RunArgsCarryEverySetting) {
   TempDir dir("bench");
-  const auto cells = expand_scenario(
-      load_scenario(test::write_test_scenario(dir.path(), "[pearl]", "[7]", "    time_limit: 90\n")));
+  const auto cells = expand_scenario(load_scenario(
+      test::write_test_scenario(dir.path(), "[pearl]", "[7]", "    time_limit: 90\n")));
   ASSERT_EQ(cells.size(), 1u);
   const auto a = cells[0].run_args("OUT/x");
   const auto after = [&](const std::string& k) {
