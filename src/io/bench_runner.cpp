@@ -80,7 +80,8 @@ pid_t spawn(const fs::path& runner, const std::vector<std::string>& args, const 
   sigaddset(&defaults, SIGINT);
   sigaddset(&defaults, SIGTERM);
   posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
+  posix_spawnattr_setpgroup(&attr, 0);  // its own group: a stop terminates its children too
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
   pid_t pid = -1;
   error = posix_spawn(&pid, runner.c_str(), &fa, &attr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
@@ -177,13 +178,13 @@ class Batch {
 
   // Terminates the running children (SIGTERM, SIGKILL after 5 s) and waits for them.
   void stop_all() {
-    for (const auto& r : running_) ::kill(r.pid, SIGTERM);
+    for (const auto& r : running_) ::kill(-r.pid, SIGTERM);
     const auto deadline = Clock::now() + std::chrono::seconds(5);
     for (const auto& r : running_) {
       int status = 0;
       while (::waitpid(r.pid, &status, WNOHANG) == 0) {
         if (Clock::now() > deadline) {
-          ::kill(r.pid, SIGKILL);
+          ::kill(-r.pid, SIGKILL);
           ::waitpid(r.pid, &status, 0);
           break;
         }
