@@ -1,0 +1,42 @@
+#include "rownav/io/localize_setup.hpp"
+
+#include "rownav/io/yaml_config.hpp"
+
+namespace rownav::io {
+namespace {
+
+localize::DriveModel drive_model(sim::DriveKind kind) {
+  switch (kind) {
+    case sim::DriveKind::differential:
+      return localize::DriveModel::differential;
+    case sim::DriveKind::ackermann:
+      return localize::DriveModel::ackermann;
+    case sim::DriveKind::skid_steer:
+      break;
+  }
+  return localize::DriveModel::skid_steer;
+}
+
+}  // namespace
+
+localize::LocalizerConfig localizer_config_for(const sim::RobotConfig& robot,
+                                               const sim::SimConfig& sim) {
+  localize::LocalizerConfig c;
+  auto& o = c.odometry;
+  o.model = drive_model(robot.drive);
+  o.track_width = robot.track_width;
+  o.wheel_radius = robot.wheel_radius;
+  o.wheelbase = robot.wheelbase;
+  o.ticks_per_rev = sim.encoders.ticks_per_rev;
+  // Nominal (ideal) ICR parameters, Bertoglio 2023 eq. (2): x_ICR = track / 2, alpha = 1.
+  o.x_icr = 0.5 * robot.track_width;
+  o.alpha = 1.0;
+  c.validate();
+  return c;
+}
+
+localize::LocalizerConfig load_localizer_config(const std::filesystem::path& file) {
+  return load_config<localize::LocalizerConfig>(file);
+}
+
+}  // namespace rownav::io

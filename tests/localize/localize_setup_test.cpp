@@ -1,0 +1,35 @@
+#include "rownav/io/localize_setup.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "rownav/io/yaml_config.hpp"
+
+namespace rownav::io {
+namespace {
+
+TEST(LocalizeSetup, NominalParametersNotTrueOnes) {
+  sim::RobotConfig robot;  // skid-steer, true x_icr 0.40, alpha 0.9
+  robot.track_width = 0.7;
+  sim::SimConfig sim;
+  sim.encoders.ticks_per_rev = 1024;
+  const auto c = localizer_config_for(robot, sim);
+  EXPECT_EQ(c.odometry.model, localize::DriveModel::skid_steer);
+  EXPECT_DOUBLE_EQ(c.odometry.track_width, 0.7);
+  EXPECT_DOUBLE_EQ(c.odometry.x_icr, 0.35);
+  EXPECT_DOUBLE_EQ(c.odometry.alpha, 1.0);
+  EXPECT_EQ(c.odometry.ticks_per_rev, 1024);
+  robot.drive = sim::DriveKind::ackermann;
+  EXPECT_EQ(localizer_config_for(robot, sim).odometry.model, localize::DriveModel::ackermann);
+}
+
+TEST(LocalizeSetup, ShippedDefaultFileEqualsDefaults) {
+  const auto file = std::filesystem::path(ROWNAV_SOURCE_DIR) / "config/localize/default.yaml";
+  const auto c = load_localizer_config(file);
+  const YAML::Node a = encode_config(c), b = encode_config(localize::LocalizerConfig{});
+  EXPECT_EQ(YAML::Dump(a), YAML::Dump(b));
+}
+
+}  // namespace
+}  // namespace rownav::io
