@@ -40,6 +40,25 @@ void append(std::vector<Eigen::Vector2d>& path, const std::vector<Eigen::Vector2
     if (path.empty() || (p - path.back()).norm() > 1e-6) path.push_back(p);
 }
 
+/// Resamples a path every kArcStep (with its anchor weights) so the pursuit cursor can advance.
+void densify(std::vector<Eigen::Vector2d>& path, std::vector<double>& w) {
+  std::vector<Eigen::Vector2d> p;
+  std::vector<double> ww;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const int n =
+        std::max(1, static_cast<int>(std::ceil((path[i + 1] - path[i]).norm() / kArcStep)));
+    for (int k = 0; k < n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      p.push_back(path[i] + t * (path[i + 1] - path[i]));
+      ww.push_back(w[i] + t * (w[i + 1] - w[i]));
+    }
+  }
+  p.push_back(path.back());
+  ww.push_back(w.back());
+  path = std::move(p);
+  w = std::move(ww);
+}
+
 /// Weight of the target correction along a path: its cumulative length fraction.
 std::vector<double> ramp(const std::vector<Eigen::Vector2d>& path) {
   std::vector<double> w(path.size(), 0.0);
@@ -99,6 +118,8 @@ HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPl
     build_u_turn(e, plan.radius);
   else
     build_bulb(e, plan.radius);
+  for (auto& p : primitives_)
+    if (!p.rotate) densify(p.path, p.anchor);
 }
 
 void HeadlandManoeuvre::build_in_place(double e) {
@@ -186,12 +207,9 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
     if (std::abs(p.y - (planned_y_ - spacing_ / 2.0)) < gate) lo = p.y;
     if (std::abs(p.y - (planned_y_ + spacing_ / 2.0)) < gate) hi = p.y;
   }
-  if (lo && hi)
-    target_y_ = (*lo + *hi) / 2.0;
-  else if (lo)
-    target_y_ = *lo + spacing_ / 2.0;
-  else if (hi)
-    target_y_ = *hi - spacing_ / 2.0;
+  // Only abeam of the target: its two flanking row ends are then on either side of the robot and
+  // the bias of each end's nearest point towards the robot cancels in the midpoint.
+  if (lo && hi && std::abs(robot.y() - target_y_) < 0.5 * spacing_) target_y_ = (*lo + *hi) / 2.0;
 }
 
 core::Twist2 HeadlandManoeuvre::follow(Primitive& p, const core::Pose2& T_turn_base) {
