@@ -9,6 +9,7 @@ void add_render_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_config_command(CLI::App& app);
 void add_detect_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 
 }  // namespace rownav::app

@@ -1,0 +1,136 @@
+// `rownav run`: one closed-loop mission in the simulator, with a report.
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+
+#include "commands.hpp"
+#include "rownav/io/closed_loop_runner.hpp"
+#include "rownav/io/input_error.hpp"
+#include "rownav/io/mission_io.hpp"
+#include "rownav/io/progress.hpp"
+#include "rownav/io/run_metrics.hpp"
+#include "rownav/io/run_report.hpp"
+#include "rownav/io/yaml_config.hpp"
+#include "run_mission.hpp"
+#include "setup.hpp"
+#include "temp_nav_doubles.hpp"
+
+namespace rownav::app {
+
+namespace {
+
+// TEMPORARY until io::make_tracker / io::make_controller are merged: only the doubles exist.
+void make_stack(const RunArgs& a, io::ClosedLoopSetup& s) {
+  if (a.tracker != "pass_through")
+    throw io::InputError("--tracker", "",
+                         "unknown tracker '" + a.tracker + "' (known in this build: pass_through)");
+  if (a.controller != "proportional")
+    throw io::InputError(
+        "--controller", "",
+        "unknown controller '" + a.controller + "' (known in this build: proportional)");
+  s.make_tracker = [] { return std::make_unique<test::PassThroughTracker>(); };
+  s.make_controller = [] { return std::make_unique<test::ProportionalController>(); };
+}
+
+void print_summary(const io::RunSummary& s, const RunArgs& a) {
+  auto show = [](const std::optional<double>& v) {
+    std::ostringstream o;
+    if (v)
+      o << std::fixed << std::setprecision(3) << *v;
+    else
+      o << "n/a";
+    return o.str();
+  };
+  std::cout << (s.success ? "mission succeeded" : "mission FAILED") << " (" << s.stop_reason
+            << "): " << s.corridors_served << "/" << s.corridors_planned << " corridors, "
+            << s.correct_entries << "/" << s.turns << " correct entries, plants crushed "
+            << s.plants_crushed << (s.collision ? ", COLLISION" : "") << "\n"
+            << "in-row displacement mean " << show(s.in_row_mean_displacement) << " m, max "
+            << show(s.in_row_max_displacement) << " m; path-length ratio "
+            << show(s.path_length_ratio_mean) << "; row-end error " << show(s.row_end_error_mean)
+            << " m\n"
+            << "simulated " << std::fixed << std::setprecision(1) << s.sim_time << " s in "
+            << s.wall_time << " s wall, " << s.distance << " m driven; frame latency median "
+            << show(s.frame_latency_median_ms) << " ms\n"
+            << "wrote " << (a.out / "summary.json").string() << " and "
+            << (a.out / "report.html").string() << "\n";
+}
+
+}  // namespace
+
+bool run_mission(const RunArgs& a) {
+  sim::FieldConfig field_config;
+  const sim::Field field = load_field(a.field, &field_config);
+  io::ClosedLoopSetup s;
+  s.field = &field;
+  s.robot = load_robot(a.robot);
+  s.sensors = load_sensors(a.sensor, "");
+  s.sensors.seed = a.seed;
+  s.mission = io::load_mission(a.mission);
+  if (a.nav_config) s.navigator = io::load_config<navigate::NavigatorConfig>(*a.nav_config);
+  s.detector = a.detector;
+  if (a.detect_config) s.detect_config = *a.detect_config;
+  s.time_limit = a.time_limit;
+  make_stack(a, s);
+  std::optional<io::Progress> bar;
+  if (!a.quiet) {
+    bar.emplace("mission", 100.0);
+    s.progress = [&bar](double, double f) { bar->update(100.0 * f); };
+  }
+  const io::RunResult r = io::run_closed_loop(s);
+  if (bar) bar->finish();
+  const io::RunSummary summary = io::summarize(r, sim::FieldTruth(field), s.mission.block);
+  io::RunNames names{a.field.stem().string(),
+                     a.robot.stem().string(),
+                     a.sensor ? a.sensor->stem().string() : "default",
+                     a.mission.stem().string(),
+                     a.detector,
+                     a.tracker,
+                     a.controller,
+                     a.seed};
+  io::write_run_report(a.out, r, summary, names, field);
+  print_summary(summary, a);
+  return summary.success;
+}
+
+void add_run_command(CLI::App& app) {
+  auto a = std::make_shared<RunArgs>();
+  CLI::App* c = app.add_subcommand(
+      "run",
+      "Closed-loop mission in the simulator: the robot serves the planned corridors by "
+      "itself (LiDAR rows, headland turns); writes summary.json and report.html");
+  c->add_option("--field", a->field, "field YAML (config/fields)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c->add_option("--robot", a->robot, "robot YAML (config/robots)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c->add_option("--mission", a->mission, "mission YAML (config/missions)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c->add_option("--out", a->out, "output directory")->required();
+  c->add_option("--sensor", a->sensor, "sensors YAML (config/sensors); default OS1-16")
+      ->check(CLI::ExistingFile);
+  c->add_option("--detector", a->detector, "row detector (default hough_skew)");
+  c->add_option("--tracker", a->tracker, "row tracker (this build: pass_through)");
+  c->add_option("--controller", a->controller, "path controller (this build: proportional)");
+  c->add_option("--detect-config", a->detect_config, "detection config YAML")
+      ->check(CLI::ExistingFile);
+  c->add_option("--track-config", a->track_config, "tracker config YAML")->check(CLI::ExistingFile);
+  c->add_option("--control-config", a->control_config, "controller config YAML")
+      ->check(CLI::ExistingFile);
+  c->add_option("--nav-config", a->nav_config, "navigator config YAML (navigate::NavigatorConfig)")
+      ->check(CLI::ExistingFile);
+  c->add_option("--seed", a->seed, "simulation seed (default 1)");
+  c->add_option("--time-limit", a->time_limit, "[s] simulated time limit (default 1800)");
+  c->add_flag("--quiet", a->quiet, "no progress bar");
+  c->callback([a] {
+    if (!run_mission(*a)) {
+      std::cout.flush();
+      std::exit(1);  // the mission failed (safe stop, wrong corridor, timeout)
+    }
+  });
+}
+
+}  // namespace rownav::app

@@ -1,0 +1,27 @@
+#pragma once
+/// @file run_mission.hpp The closed-loop mission shared by `rownav run` and `rownav demo`.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace rownav::app {
+
+/// Options of a closed-loop run (file paths as given on the command line).
+struct RunArgs {
+  std::filesystem::path field, robot, mission, out;
+  std::optional<std::filesystem::path> sensor, detect_config, track_config, control_config,
+      nav_config;
+  std::string detector = "hough_skew";
+  std::string tracker = "pass_through";
+  std::string controller = "proportional";
+  std::uint64_t seed = 1;
+  double time_limit = 1800.0;  ///< [s] simulated
+  bool quiet = false;
+};
+
+/// Runs the mission, prints a short summary on stdout, writes the report into args.out.
+/// Returns true when the mission succeeded. Throws (InputError, invalid_argument) on bad input.
+bool run_mission(const RunArgs& args);
+
+}  // namespace rownav::app

@@ -1,0 +1,127 @@
+#pragma once
+/// @file closed_loop_runner.hpp A whole mission in the simulator with the full stack closed on
+/// the simulated LiDAR: detection pipeline -> tracker -> end-of-row -> navigator (controller
+/// inside) -> robot. Records what a report needs; deterministic per seed.
+#include <Eigen/Core>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rownav/control/controller.hpp"
+#include "rownav/navigate/end_of_row.hpp"
+#include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/navigator.hpp"
+#include "rownav/sim/field.hpp"
+#include "rownav/sim/robot.hpp"
+#include "rownav/sim/simulator.hpp"
+#include "rownav/track/row_tracker.hpp"
+
+namespace rownav::io {
+
+/// Where the navigation stack gets T_odom_base from. Receives every simulator sample (encoders,
+/// IMU, GNSS) as a SimSink; the runner also hands it the true state after each physics step
+/// (used only by the temporary truth-based source below).
+class OdometrySource : public sim::SimSink {
+ public:
+  virtual void on_physics_step(const sim::RobotState& /*truth*/) {}
+  /// Pose of the base in the odom frame at `stamp` (the latest one), nullopt before any data.
+  virtual std::optional<core::Pose2> T_odom_base(double stamp) const = 0;
+  virtual core::Twist2 twist() const = 0;
+};
+
+/// TEMPORARY default until localize::Localizer is merged: the simulator's true motion,
+/// integrated with a scale error on distance and on yaw (a drifting odometry). Replace by the
+/// Localizer fed with encoders + IMU at merge.
+class DriftingTruthOdometry : public OdometrySource {
+ public:
+  explicit DriftingTruthOdometry(double distance_scale_error = 0.01, double yaw_scale_error = 0.02)
+      : ds_(distance_scale_error), dyaw_(yaw_scale_error) {}
+  void on_physics_step(const sim::RobotState& truth) override;
+  std::optional<core::Pose2> T_odom_base(double) const override { return pose_; }
+  core::Twist2 twist() const override { return twist_; }
+
+ private:
+  double ds_, dyaw_;
+  std::optional<core::Pose2> last_truth_, pose_;
+  core::Twist2 twist_;
+};
+
+using TrackerFactory = std::function<std::unique_ptr<track::RowTracker>()>;
+using ControllerFactory = std::function<std::unique_ptr<control::PathController>()>;
+using OdometryFactory = std::function<std::unique_ptr<OdometrySource>()>;
+
+/// Everything a closed-loop run needs (files already loaded).
+struct ClosedLoopSetup {
+  const sim::Field* field = nullptr;  ///< must outlive the run
+  sim::RobotConfig robot;
+  sim::SimConfig sensors;
+  navigate::MissionPlan mission;
+  navigate::NavigatorConfig navigator;
+  navigate::EndOfRowConfig end_of_row;
+  std::string detector = "hough_skew";
+  std::filesystem::path detect_config;  ///< empty: detector defaults
+  TrackerFactory make_tracker;
+  ControllerFactory make_controller;
+  OdometryFactory make_odometry;  ///< empty: DriftingTruthOdometry (TEMPORARY)
+  double time_limit = 1200.0;     ///< [s] simulated; the run stops with reason `timeout`
+  double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
+  std::function<void(double sim_time, double fraction)> progress;  ///< optional
+};
+
+/// One ground-truth sample of the run (20 Hz).
+struct RunSample {
+  double stamp = 0.0;
+  core::Pose2 T_world_base;  ///< truth
+  core::Pose2 T_odom_base;   ///< what the stack believed
+  sim::Place place = sim::Place::outside;
+  int corridor = -1;          ///< true corridor (lane) or -1
+  int planned_corridor = -1;  ///< navigator's corridor
+  navigate::NavState state = navigate::NavState::in_row;
+  double lateral_error = 0.0;  ///< [m] true, from the corridor centre
+  double heading_error = 0.0;  ///< [rad] true
+  core::Twist2 twist, cmd;
+  int plants_crushed = 0;
+  bool collision = false;  ///< footprint over a post this sample
+};
+
+/// Per LiDAR frame, in a row: the tracker against the truth.
+struct FrameSample {
+  double stamp = 0.0;
+  double latency = 0.0;  ///< [s] detection + tracking + end of row + navigator
+  bool in_row = false;   ///< navigator in_row and truth in a lane
+  track::TrackStatus status = track::TrackStatus::lost;
+  double lateral_error = 0.0, true_lateral_error = 0.0;  ///< [m]
+  double heading_error = 0.0, true_heading_error = 0.0;  ///< [rad]
+  double row_spacing = 0.0;                              ///< [m] tracker's
+  std::vector<double> slope_errors, intercept_errors;    ///< followed rows vs truth
+};
+
+/// What a run produced.
+struct RunResult {
+  std::vector<int> order;  ///< resolved corridor order
+  std::vector<RunSample> samples;
+  std::vector<FrameSample> frames;
+  std::vector<navigate::NavEvent> events;       ///< odom-frame points
+  std::vector<Eigen::Vector2d> row_ends_world;  ///< estimated row ends, mapped by the start pose
+  navigate::NavState final_state = navigate::NavState::in_row;
+  navigate::StopReason stop_reason = navigate::StopReason::none;
+  int turns = 0;
+  int served = 0;
+  core::Pose2 T_world_odom;  ///< truth of the odom frame (start pose)
+  double sim_time = 0.0, wall_time = 0.0;
+  std::vector<std::pair<int, int>> entries;  ///< (planned, true corridor) at each entry
+};
+
+/// Start pose at the entrance of `order[0]`, facing along it so that the next corridor of the
+/// order lies on `first_turn`'s side. Throws std::invalid_argument for a missing corridor.
+core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& order, int block,
+                          navigate::TurnSide first_turn, double lead_in);
+
+/// Runs the mission. Throws std::invalid_argument / InputError for a bad set-up (before
+/// simulating); the run itself never throws.
+RunResult run_closed_loop(const ClosedLoopSetup& setup);
+
+}  // namespace rownav::io

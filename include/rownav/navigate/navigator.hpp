@@ -1,0 +1,238 @@
+#pragma once
+/// @file navigator.hpp The mission state machine: in_row -> exiting -> turning -> headland ->
+/// entering -> in_row ... -> done, or safe_stop with a reason (Bertoglio 2023,
+/// 003_25dc0df51a1e5faf.txt sec. II: in-row, turn and end-row navigation).
+///
+/// The navigator owns no perception: the caller runs the detector, the tracker and the
+/// end-of-row detector each LiDAR frame and passes their answers with the odometry pose. The
+/// tracker, controller and end-of-row detector are injected (reset after turns; the controller
+/// computes the in-row command).
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "rownav/control/controller.hpp"
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/pose2.hpp"
+#include "rownav/core/row_observation.hpp"
+#include "rownav/core/twist.hpp"
+#include "rownav/navigate/end_of_row.hpp"
+#include "rownav/navigate/headland_manoeuvre.hpp"
+#include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/row_end_poles.hpp"
+#include "rownav/track/row_tracker.hpp"
+
+namespace rownav::navigate {
+
+/// State of the mission.
+enum class NavState : std::uint8_t {
+  in_row,
+  exiting,
+  turning,
+  headland,
+  entering,
+  done,
+  safe_stop
+};
+/// Why the run stopped (summary.json `stop_reason`).
+enum class StopReason : std::uint8_t {
+  none,
+  done,
+  perception_lost,
+  obstacle,
+  place_contradicts_plan,
+  timeout
+};
+/// Something that happened (events timeline of the report).
+enum class NavEventKind : std::uint8_t {
+  row_end,
+  exit_done,
+  turn_started,
+  row_passed,
+  reanchored,
+  turn_finished,
+  entered_corridor,
+  safe_stop,
+  mission_done
+};
+
+/// One event.
+struct NavEvent {
+  double stamp = 0.0;  ///< [s]
+  NavEventKind kind = NavEventKind::row_end;
+  int corridor = -1;                                ///< corridor concerned (plan index)
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< [m] odom, when relevant
+  std::string text;                                 ///< one line for people
+};
+
+/// Geometry and limits of the robot the navigator needs.
+struct RobotLimits {
+  double width = 0.6;           ///< [m] footprint width
+  double base_to_front = 0.45;  ///< [m] base to the front of the footprint
+  TurnAbility turn;             ///< in-place turns / min radius
+};
+
+/// Navigator parameters.
+struct NavigatorConfig {
+  double row_speed = 0.8;      ///< [m/s] in rows (003 sec. III: up to 1 m/s in the real vineyard)
+  double entry_speed = 0.4;    ///< [m/s] entering a corridor after a turn
+  double exit_distance = 1.2;  ///< [m] beyond the row ends, by odometry, before turning (003 II-B)
+  double perception_timeout = 0.5;  ///< [s] in a row without rows seen -> safe stop
+  double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
+  int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
+  double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
+  double entry_max_depth = 6.0;     ///< [m] entering without a corridor seen -> perception_lost
+  double entry_gate = 0.5;    ///< [-] x spacing: observed vs planned corridor centre, right place
+  double line_gain = 1.5;     ///< [1/m] lateral gain of the odometry line follower (exit / entry)
+  double heading_gain = 1.5;  ///< [1/s] heading gain of the same
+  ManoeuvreChoice manoeuvre = ManoeuvreChoice::automatic;  ///< headland turn
+  ManoeuvreConfig turn;                                    ///< manoeuvre parameters
+  RowEndConfig row_ends;  ///< row-end estimator in the headland (003 sec. II-C)
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("row_speed", s.row_speed);
+    v("entry_speed", s.entry_speed);
+    v("exit_distance", s.exit_distance);
+    v("perception_timeout", s.perception_timeout);
+    v("stop_distance", s.stop_distance);
+    v("obstacle_min_points", s.obstacle_min_points);
+    v("entry_check_depth", s.entry_check_depth);
+    v("entry_max_depth", s.entry_max_depth);
+    v("entry_gate", s.entry_gate);
+    v("line_gain", s.line_gain);
+    v("heading_gain", s.heading_gain);
+    v("manoeuvre", s.manoeuvre);
+    v("turn", s.turn);
+    v("row_ends", s.row_ends);
+  }
+  void validate() const;
+};
+
+/// What the navigator sees each LiDAR frame.
+struct NavInput {
+  double stamp = 0.0;                            ///< [s]
+  core::Pose2 T_odom_base;                       ///< odometry pose at stamp
+  core::Twist2 twist;                            ///< body velocity estimate
+  core::RowObservation observation;              ///< detector output
+  track::RowTracking tracking;                   ///< tracker output
+  EndOfRowResult end_of_row;                     ///< end-of-row detector output
+  std::span<const Eigen::Vector2f> points_base;  ///< 2D points, base frame (row ends, obstacles)
+  RobotLimits robot;
+};
+
+/// The navigator's answer.
+struct NavOutput {
+  core::Twist2 cmd;
+  NavState state = NavState::in_row;
+  StopReason stop_reason = StopReason::none;
+  std::vector<NavEvent> events;  ///< what happened this step
+  int corridor = -1;             ///< corridor of the plan being served / entered
+  int served = 0;                ///< corridors driven end to end
+};
+
+/// The mission state machine. step() / hold() never throw.
+class Navigator {
+ public:
+  /// `order`: resolved corridor order (resolve_order); the robot starts in order.front().
+  Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
+            track::RowTracker& tracker, control::PathController& controller,
+            EndOfRowDetector& end_of_row);
+
+  /// One LiDAR frame.
+  NavOutput step(const NavInput& in);
+  /// Between frames (physics rate): refreshes odometry-closed parts (rotations, line following)
+  /// with the latest pose; repeats the in-row command. Cheap.
+  NavOutput hold(double stamp, const core::Pose2& T_odom_base);
+
+  NavState state() const { return state_; }
+  StopReason stop_reason() const { return reason_; }
+  /// Row-end points estimated so far (odom frame): the ends of every corridor left.
+  const std::vector<Eigen::Vector2d>& row_ends_odom() const { return row_ends_; }
+  /// Turns completed.
+  int turns() const { return turns_; }
+  const std::vector<int>& order() const { return order_; }
+  /// The manoeuvre in progress (null outside the headland).
+  const HeadlandManoeuvre* manoeuvre() const { return manoeuvre_.get(); }
+
+ private:
+  void in_row(const NavInput& in, NavOutput& out);
+  void exiting(const core::Pose2& T, NavOutput& out, double stamp);
+  void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
+  void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
+  void remember_row_geometry(const NavInput& in);
+  void start_turn(const core::Pose2& T, NavOutput& out, double stamp);
+  void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
+  bool obstacle_ahead(const NavInput& in) const;
+  core::Twist2 follow_line(const core::Line2& line, const core::Pose2& T, double v) const;
+  NavOutput finish(NavOutput out);
+
+  NavigatorConfig config_;
+  std::vector<int> order_;
+  std::vector<CorridorChange> changes_;
+  track::RowTracker& tracker_;
+  control::PathController& controller_;
+  EndOfRowDetector& end_of_row_;
+  NavState state_ = NavState::in_row;
+  StopReason reason_ = StopReason::none;
+  std::size_t leg_ = 0;  // index in order_ of the corridor being served
+  int served_ = 0, turns_ = 0;
+  double last_seen_ = -1.0, last_stamp_ = 0.0, spacing_ = 0.0;
+  int spacing_n_ = 0;
+  std::optional<core::Line2> centre_odom_;  // exit corridor centre line, oriented forward
+  std::optional<Eigen::Vector2d> left_end_, right_end_;  // odom
+  std::optional<double> end_arc_;                        // row ends along centre_odom_
+  std::unique_ptr<HeadlandManoeuvre> manoeuvre_;
+  RobotLimits robot_;
+  core::Twist2 last_cmd_;
+  std::vector<Eigen::Vector2d> row_ends_;
+};
+
+}  // namespace rownav::navigate
+
+template <>
+struct rownav::core::EnumNames<rownav::navigate::NavState> {
+  using E = rownav::navigate::NavState;
+  static constexpr std::array<std::pair<E, std::string_view>, 7> values{
+      {{E::in_row, "in_row"},
+       {E::exiting, "exiting"},
+       {E::turning, "turning"},
+       {E::headland, "headland"},
+       {E::entering, "entering"},
+       {E::done, "done"},
+       {E::safe_stop, "safe_stop"}}};
+};
+
+template <>
+struct rownav::core::EnumNames<rownav::navigate::StopReason> {
+  using E = rownav::navigate::StopReason;
+  static constexpr std::array<std::pair<E, std::string_view>, 6> values{
+      {{E::none, "none"},
+       {E::done, "done"},
+       {E::perception_lost, "perception_lost"},
+       {E::obstacle, "obstacle"},
+       {E::place_contradicts_plan, "place_contradicts_plan"},
+       {E::timeout, "timeout"}}};
+};
+
+template <>
+struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
+  using E = rownav::navigate::NavEventKind;
+  static constexpr std::array<std::pair<E, std::string_view>, 9> values{
+      {{E::row_end, "row_end"},
+       {E::exit_done, "exit_done"},
+       {E::turn_started, "turn_started"},
+       {E::row_passed, "row_passed"},
+       {E::reanchored, "reanchored"},
+       {E::turn_finished, "turn_finished"},
+       {E::entered_corridor, "entered_corridor"},
+       {E::safe_stop, "safe_stop"},
+       {E::mission_done, "mission_done"}}};
+};

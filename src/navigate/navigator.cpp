@@ -1,0 +1,217 @@
+// Navigator: configuration, the per-frame dispatch, in-row following and the exit by odometry.
+// Headland turn and corridor entry: navigator_headland.cpp.
+#include "rownav/navigate/navigator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace rownav::navigate {
+
+namespace {
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << v;
+  return s.str();
+}
+}  // namespace
+
+void NavigatorConfig::validate() const {
+  core::check_positive(row_speed, "row_speed");
+  core::check_positive(entry_speed, "entry_speed");
+  core::check_non_negative(exit_distance, "exit_distance");
+  core::check_positive(perception_timeout, "perception_timeout");
+  core::check_non_negative(stop_distance, "stop_distance");
+  core::check_positive(obstacle_min_points, "obstacle_min_points");
+  core::check_positive(entry_check_depth, "entry_check_depth");
+  core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
+              "must be > entry_check_depth");
+  core::check_range(entry_gate, 0.05, 1.0, "entry_gate");
+  core::check_positive(line_gain, "line_gain");
+  core::check_positive(heading_gain, "heading_gain");
+  core::validate_nested(turn, "turn");
+  core::validate_nested(row_ends, "row_ends");
+}
+
+Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
+                     track::RowTracker& tracker, control::PathController& controller,
+                     EndOfRowDetector& end_of_row)
+    : config_(config),
+      order_(std::move(order)),
+      changes_(corridor_changes(order_, first_turn)),
+      tracker_(tracker),
+      controller_(controller),
+      end_of_row_(end_of_row) {
+  config_.validate();
+  if (order_.empty()) state_ = NavState::done;
+}
+
+NavOutput Navigator::finish(NavOutput out) {
+  out.state = state_;
+  out.stop_reason = reason_;
+  out.corridor = leg_ < order_.size() ? order_[leg_] : -1;
+  out.served = served_;
+  if (state_ == NavState::done || state_ == NavState::safe_stop) out.cmd = {};
+  if (!std::isfinite(out.cmd.v) || !std::isfinite(out.cmd.omega)) out.cmd = {};
+  last_cmd_ = out.cmd;
+  return out;
+}
+
+void Navigator::stop(StopReason reason, NavOutput& out, double stamp, const std::string& why) {
+  state_ = NavState::safe_stop;
+  reason_ = reason;
+  out.cmd = {};
+  out.events.push_back({stamp, NavEventKind::safe_stop, leg_ < order_.size() ? order_[leg_] : -1,
+                        Eigen::Vector2d::Zero(),
+                        "safe stop: " + std::string(core::enum_name(reason)) + " (" + why + ")"});
+}
+
+NavOutput Navigator::step(const NavInput& in) {
+  NavOutput out;
+  robot_ = in.robot;
+  last_stamp_ = in.stamp;
+  if (last_seen_ < 0.0) last_seen_ = in.stamp;
+  switch (state_) {
+    case NavState::in_row:
+      in_row(in, out);
+      break;
+    case NavState::exiting:
+      remember_row_geometry(in);
+      exiting(in.T_odom_base, out, in.stamp);
+      break;
+    case NavState::turning:
+    case NavState::headland:
+      turning(&in, in.T_odom_base, out, in.stamp);
+      break;
+    case NavState::entering:
+      entering(&in, in.T_odom_base, out, in.stamp);
+      break;
+    case NavState::done:
+    case NavState::safe_stop:
+      break;
+  }
+  return finish(std::move(out));
+}
+
+NavOutput Navigator::hold(double stamp, const core::Pose2& T_odom_base) {
+  NavOutput out;
+  out.cmd = last_cmd_;
+  switch (state_) {
+    case NavState::exiting:
+      exiting(T_odom_base, out, stamp);
+      break;
+    case NavState::turning:
+    case NavState::headland:
+      turning(nullptr, T_odom_base, out, stamp);
+      break;
+    case NavState::entering:
+      entering(nullptr, T_odom_base, out, stamp);
+      break;
+    default:
+      break;
+  }
+  return finish(std::move(out));
+}
+
+bool Navigator::obstacle_ahead(const NavInput& in) const {
+  const double x0 = in.robot.base_to_front, x1 = x0 + config_.stop_distance;
+  const double half = in.robot.width / 2.0;
+  int n = 0;
+  for (const auto& p : in.points_base)
+    if (std::isfinite(p.x()) && std::isfinite(p.y()) && p.x() > x0 && p.x() < x1 &&
+        std::abs(p.y()) < half)
+      ++n;
+  return n >= config_.obstacle_min_points;
+}
+
+void Navigator::remember_row_geometry(const NavInput& in) {
+  const auto& t = in.tracking;
+  if (t.status != track::TrackStatus::tracking) return;
+  const core::Pose2& T = in.T_odom_base;
+  centre_odom_ = t.centre_line_base.transformed(T);
+  if (t.row_spacing > 0.0) {  // running mean of the tracker's spacing (003 Table I row width)
+    spacing_ = (spacing_ * spacing_n_ + t.row_spacing) / (spacing_n_ + 1);
+    spacing_n_ = std::min(spacing_n_ + 1, 50);
+  }
+  // Row ends: the far end of the followed rows' support, once it is in view (not range-cut).
+  auto end_of = [&](int i) -> std::optional<Eigen::Vector2d> {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) return std::nullopt;
+    const auto& r = t.rows[static_cast<std::size_t>(i)];
+    if (r.x_max > 7.0 || r.support < 3) return std::nullopt;
+    return T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
+  };
+  if (auto e = end_of(t.left)) left_end_ = e;
+  if (auto e = end_of(t.right)) right_end_ = e;
+  if (left_end_ || right_end_) {
+    double arc = 0.0;
+    int n = 0;
+    for (const auto& e : {left_end_, right_end_})
+      if (e) arc += centre_odom_->arc(*e), ++n;
+    end_arc_ = arc / n;
+  }
+}
+
+void Navigator::in_row(const NavInput& in, NavOutput& out) {
+  const bool seen = in.observation.status != core::DetectionStatus::no_rows &&
+                    in.tracking.status != track::TrackStatus::lost;
+  if (seen) last_seen_ = in.stamp;
+  if (in.stamp - last_seen_ > config_.perception_timeout)
+    return stop(StopReason::perception_lost, out, in.stamp,
+                "no rows for " + fmt(in.stamp - last_seen_) + " s");
+  if (obstacle_ahead(in))
+    return stop(StopReason::obstacle, out, in.stamp,
+                "obstacle within " + fmt(config_.stop_distance) + " m");
+  remember_row_geometry(in);
+  control::ControlInput c;
+  c.stamp = in.stamp;
+  c.lateral_error = in.tracking.lateral_error;
+  c.heading_error = in.tracking.heading_error;
+  c.path_base = in.tracking.centre_line_base;
+  c.steepness = in.tracking.steepness;
+  c.speed_ref = config_.row_speed;
+  c.speed = in.twist.v;
+  out.cmd = controller_.compute(c);
+  if (in.end_of_row.end_detected && centre_odom_) {
+    state_ = NavState::exiting;
+    if (!end_arc_) {  // no row end seen: take the detector's distance, else the box's near edge
+      const double ahead = in.end_of_row.distance_to_end.value_or(end_of_row_.config().box_x_min);
+      end_arc_ = centre_odom_->arc(in.T_odom_base.translation()) + ahead;
+    }
+    out.events.push_back(
+        {in.stamp, NavEventKind::row_end, order_[leg_], centre_odom_->at(*end_arc_),
+         "row end detected, " + fmt(*end_arc_ - centre_odom_->arc(in.T_odom_base.translation())) +
+             " m ahead"});
+  }
+}
+
+core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& T, double v) const {
+  const double lat = line.signed_distance(T.translation());
+  const double head = core::angle_diff(T.theta, line.heading());
+  const double w = -config_.line_gain * v * lat - config_.heading_gain * head;
+  return {v, 0.0, std::clamp(w, -1.0, 1.0)};
+}
+
+void Navigator::exiting(const core::Pose2& T, NavOutput& out, double stamp) {
+  // 003 sec. II-B: leave the row by a fixed distance measured by odometry.
+  const double s = centre_odom_->arc(T.translation());
+  if (s < *end_arc_ + config_.exit_distance) {
+    out.cmd = follow_line(*centre_odom_, T, config_.row_speed);
+    return;
+  }
+  ++served_;
+  if (left_end_) row_ends_.push_back(*left_end_);
+  if (right_end_) row_ends_.push_back(*right_end_);
+  out.events.push_back({stamp, NavEventKind::exit_done, order_[leg_], T.translation(),
+                        "left corridor " + std::to_string(order_[leg_])});
+  if (leg_ + 1 >= order_.size()) {
+    state_ = NavState::done;
+    reason_ = StopReason::done;
+    out.events.push_back({stamp, NavEventKind::mission_done, order_[leg_], T.translation(),
+                          "mission done: " + std::to_string(served_) + " corridors served"});
+    return;
+  }
+  start_turn(T, out, stamp);
+}
+
+}  // namespace rownav::navigate

@@ -1,0 +1,106 @@
+// Navigator: the headland turn (row ends re-anchoring the target) and the corridor entry with
+// its place check (Malavazi 2018, 004 sec. 4: dead-reckoned turns often enter the wrong row).
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "rownav/navigate/navigator.hpp"
+
+namespace rownav::navigate {
+
+namespace {
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << v;
+  return s.str();
+}
+}  // namespace
+
+void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
+  const CorridorChange& change = changes_[leg_];
+  double spacing = spacing_;
+  if (!(spacing > 0.0) && left_end_ && right_end_) spacing = (*left_end_ - *right_end_).norm();
+  if (!(spacing > 0.0))
+    return stop(StopReason::perception_lost, out, stamp, "row spacing never estimated");
+  spacing_ = spacing;
+  const Eigen::Vector2d origin = centre_odom_->at(*end_arc_);
+  const core::Pose2 T_odom_turn(origin.x(), origin.y(), centre_odom_->heading());
+  const TurnPlan plan = choose_turn(config_.manoeuvre, change.shift, spacing, robot_.turn);
+  manoeuvre_ = std::make_unique<HeadlandManoeuvre>(config_.turn, plan, T_odom_turn, change.shift,
+                                                   change.side, spacing, config_.exit_distance);
+  tracker_.reset();
+  end_of_row_.reset();
+  controller_.reset();
+  state_ = NavState::turning;
+  out.events.push_back({stamp, NavEventKind::turn_started, change.to, T.translation(),
+                        std::string(core::enum_name(plan.kind)) + " turn " +
+                            std::string(core::enum_name(change.side)) + " by " +
+                            std::to_string(change.shift) + " corridor(s), spacing " + fmt(spacing) +
+                            " m, towards corridor " + std::to_string(change.to)});
+  centre_odom_.reset();
+  left_end_.reset();
+  right_end_.reset();
+  end_arc_.reset();
+}
+
+void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp) {
+  std::vector<Eigen::Vector2d> ends;
+  if (in != nullptr) {
+    // Row ends in the headland (003 sec. II-C), rows' direction = the turn frame's x axis.
+    const double heading_base = core::angle_diff(manoeuvre_->T_odom_turn().theta, T.theta);
+    const RowEnds re = estimate_row_ends(in->points_base, heading_base, spacing_, config_.row_ends);
+    for (const auto& p : re.poles)
+      if (p.allFinite()) ends.push_back(T * p);
+  }
+  const ManoeuvreStep s = manoeuvre_->step(T, ends);
+  out.cmd = s.cmd;
+  const int to = order_[leg_ + 1];
+  if (s.row_passed)
+    out.events.push_back({stamp, NavEventKind::row_passed, to, T.translation(),
+                          "row ends passed: " + std::to_string(manoeuvre_->rows_passed())});
+  if (s.reanchored)
+    out.events.push_back({stamp, NavEventKind::reanchored, to, T.translation(),
+                          "target corridor re-anchored on row ends at " +
+                              fmt(manoeuvre_->target_y()) + " m across"});
+  if (s.phase != ManoeuvrePhase::done) {
+    state_ = s.phase == ManoeuvrePhase::headland ? NavState::headland : NavState::turning;
+    return;
+  }
+  ++turns_;
+  state_ = NavState::entering;
+  out.events.push_back({stamp, NavEventKind::turn_finished, to, T.translation(),
+                        "turn finished, entering corridor " + std::to_string(to)});
+  out.cmd = follow_line(manoeuvre_->entry_line_odom(), T, config_.entry_speed);
+}
+
+void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp) {
+  const core::Line2 line = manoeuvre_->entry_line_odom();
+  out.cmd = follow_line(line, T, config_.entry_speed);
+  if (in == nullptr) return;
+  const double depth = line.arc(T.translation()) - config_.exit_distance;
+  const int to = order_[leg_ + 1];
+  const bool seen =
+      in->tracking.status == track::TrackStatus::tracking && in->observation.corridor.has_value();
+  if (depth >= config_.entry_check_depth && seen) {
+    // The corridor the tracker sees must be the planned one: same centre within the gate.
+    const core::Line2 observed = in->tracking.centre_line_base.transformed(T);
+    const double diff =
+        std::abs(observed.signed_distance(T.translation()) - line.signed_distance(T.translation()));
+    if (diff > config_.entry_gate * spacing_)
+      return stop(StopReason::place_contradicts_plan, out, stamp,
+                  "corridor seen " + fmt(diff) + " m from the planned one");
+    ++leg_;
+    state_ = NavState::in_row;
+    last_seen_ = stamp;
+    manoeuvre_.reset();
+    out.events.push_back(
+        {stamp, NavEventKind::entered_corridor, to, T.translation(),
+         "entered corridor " + std::to_string(to) + " (offset from plan " + fmt(diff) + " m)"});
+    return;
+  }
+  if (depth > config_.entry_max_depth)
+    stop(StopReason::perception_lost, out, stamp, "no corridor seen while entering");
+}
+
+}  // namespace rownav::navigate
