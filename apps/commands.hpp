@@ -9,5 +9,6 @@ void add_render_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_config_command(CLI::App& app);
 void add_detect_command(CLI::App& app);
+void add_track_command(CLI::App& app);
 
 }  // namespace rownav::app
