@@ -25,15 +25,15 @@ enum class TrackStatus : std::uint8_t {
 
 /// A tracked row model expressed in the base frame of the current frame.
 struct TrackedRow {
-  int id = -1;                ///< persistent model id
-  core::Line2 line_base;      ///< oriented towards +x
-  double offset = 0.0;        ///< [m] lateral position at x = 0 (left +)
-  double heading = 0.0;       ///< [rad] direction in the base frame
-  double x_min = 0.0;         ///< [m] extent of the model's supporting points along x (base)
-  double x_max = 0.0;         ///< [m]
-  int support = 0;            ///< points / observations behind the model
-  double age = 0.0;           ///< [s] since the model was created
-  double last_seen = 0.0;     ///< [s] stamp of the last observation that updated it
+  int id = -1;             ///< persistent model id
+  core::Line2 line_base;   ///< oriented towards +x
+  double offset = 0.0;     ///< [m] lateral position at x = 0 (left +)
+  double heading = 0.0;    ///< [rad] direction in the base frame
+  double x_min = 0.0;      ///< [m] extent of the model's supporting points along x (base)
+  double x_max = 0.0;      ///< [m]
+  int support = 0;         ///< points / observations behind the model
+  double age = 0.0;        ///< [s] since the model was created
+  double last_seen = 0.0;  ///< [s] stamp of the last observation that updated it
 };
 
 /// A tracker's answer for one frame.
@@ -44,17 +44,21 @@ struct RowTracking {
   /// [m] signed offset of the base origin from the corridor centre line (left +); the corridor
   /// detector's CorridorObservation::offset is -lateral_error.
   double lateral_error = 0.0;
-  double heading_error = 0.0;  ///< [rad] robot heading minus the corridor heading
+  double heading_error = 0.0;    ///< [rad] robot heading minus the corridor heading
   core::Line2 centre_line_base;  ///< corridor centre line in the base frame, oriented forward
   double row_spacing = 0.0;      ///< [m] estimated spacing between adjacent rows (0: unknown)
   std::vector<TrackedRow> rows;  ///< tracked models, sorted right (y < 0) to left
-  int left = -1;   ///< index in rows of the followed left row, -1 if none
-  int right = -1;  ///< index in rows of the followed right row, -1 if none
+  int left = -1;                 ///< index in rows of the followed left row, -1 if none
+  int right = -1;                ///< index in rows of the followed right row, -1 if none
   /// [m] signed offset from the chosen implement row + offset (TrackerConfig::target_row), when
   /// one is configured and tracked.
   std::optional<double> target_lateral_error;
   double steepness = 0.0;  ///< [-] |tan| of the followed models' angle (Malavazi 2018 safety)
   double time_since_observation = 0.0;  ///< [s] since the last frame with rows
+  /// [m] pre-control error of Malavazi 2018 sec. 2.3.3 (model_filter only, FIR-filtered): the
+  /// lateral error, or with steep models the signed distance to where the robot would cross the
+  /// model it heads into (left +: the robot must steer right).
+  std::optional<double> distance_to_target;
 };
 
 /// A row tracker. update() never throws: stale frames, time going backwards, odometry jumps and

@@ -1,0 +1,215 @@
+// `rownav track`: runs a row detector and a row tracker over a recording, frame by frame, with
+// the odometry from one swappable source, and scores the deviations against the ground truth.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "commands.hpp"
+#include "rownav/core/angle.hpp"
+#include "rownav/detect/pipeline.hpp"
+#include "rownav/io/detector_registry.hpp"
+#include "rownav/io/input_error.hpp"
+#include "rownav/io/plot.hpp"
+#include "rownav/io/recording.hpp"
+#include "rownav/io/sim_setup.hpp"
+#include "rownav/io/tracker_registry.hpp"
+
+namespace rownav::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TrackArgs {
+  std::string detector, tracker;
+  fs::path in, out, svg, detect_config, track_config;
+};
+
+/// T_odom_base at a stamp, nullopt when unknown. The one place the odometry comes from.
+using OdometrySource = std::function<std::optional<core::Pose2>(double stamp)>;
+
+/// Index of the last sample at or before t in a stamp-sorted ground truth, -1 if none.
+long before(const std::vector<sim::GroundTruth>& gt, double t) {
+  const auto it = std::upper_bound(gt.begin(), gt.end(), t,
+                                   [](double s, const sim::GroundTruth& g) { return s < g.stamp; });
+  return static_cast<long>(it - gt.begin()) - 1;
+}
+
+// Odometry from the recorded true poses, interpolated (until the wheel + IMU Localizer is
+// available: swap this function).
+OdometrySource ground_truth_odometry(const io::Recording& rec) {
+  return [&gt = rec.ground_truth](double t) -> std::optional<core::Pose2> {
+    const long i = before(gt, t);
+    if (i < 0 || static_cast<std::size_t>(i) + 1 >= gt.size()) {
+      if (!gt.empty() && std::abs(gt.back().stamp - t) < 1e-6) return gt.back().T_world_base;
+      return std::nullopt;
+    }
+    const auto& a = gt[std::size_t(i)];
+    const auto& b = gt[std::size_t(i) + 1];
+    const double s = b.stamp > a.stamp ? (t - a.stamp) / (b.stamp - a.stamp) : 0.0;
+    return core::interpolate(a.T_world_base, b.T_world_base, s);
+  };
+}
+
+/// True lateral / heading error at t when the robot is in a lane (nearest sample within 0.05 s).
+std::optional<std::pair<double, double>> truth_at(const std::vector<sim::GroundTruth>& gt,
+                                                  double t) {
+  const long i = before(gt, t + 1e-9);
+  for (const long k : {i, i + 1}) {
+    if (k < 0 || static_cast<std::size_t>(k) >= gt.size()) continue;
+    const auto& g = gt[std::size_t(k)];
+    if (std::abs(g.stamp - t) <= 0.05 && g.place == sim::Place::lane)
+      return std::make_pair(g.lateral_error, g.heading_error);
+  }
+  return std::nullopt;
+}
+
+/// Removes the partial output unless the run completes.
+struct PartialFile {
+  fs::path path;
+  bool done = false;
+  ~PartialFile() {
+    std::error_code ec;
+    if (!done) fs::remove(path, ec);
+  }
+};
+
+struct Stats {
+  std::array<int, 3> by_status{};  // tracking, coasting, lost
+  double sq_lat = 0.0, sq_head = 0.0, max_lat = 0.0, max_head = 0.0;
+  int scored = 0;
+  io::Series est_lat{"lateral [cm]", {}, {}, io::Color::hex("#1f77b4")};
+  io::Series true_lat{"true lateral [cm]", {}, {}, io::Color::hex("#1f77b4"), true};
+  io::Series est_head{"heading [deg]", {}, {}, io::Color::hex("#d62728")};
+  io::Series true_head{"true heading [deg]", {}, {}, io::Color::hex("#d62728"), true};
+};
+
+std::string cell(std::optional<double> v) {
+  if (!v) return "";
+  std::ostringstream s;
+  s << *v;
+  return s.str();
+}
+
+void record(const track::RowTracking& t, const std::vector<sim::GroundTruth>& gt, std::ostream& out,
+            Stats& st) {
+  ++st.by_status[static_cast<std::size_t>(t.status)];
+  const bool valid = t.status != track::TrackStatus::lost;
+  const auto truth = truth_at(gt, t.stamp);
+  std::optional<double> lat, head, tl, th, el, eh;
+  if (valid) lat = t.lateral_error, head = core::rad2deg(t.heading_error);
+  if (truth) tl = truth->first, th = core::rad2deg(truth->second);
+  if (valid && truth) {
+    el = *lat - *tl, eh = *head - *th;
+    st.sq_lat += *el * *el, st.sq_head += *eh * *eh, ++st.scored;
+    st.max_lat = std::max(st.max_lat, std::abs(*el)),
+    st.max_head = std::max(st.max_head, std::abs(*eh));
+  }
+  out << t.stamp << ',' << core::enum_name(t.status) << ',' << t.confidence << ',' << cell(lat)
+      << ',' << cell(head) << ',' << (valid ? cell(t.row_spacing) : "") << ',' << cell(tl) << ','
+      << cell(th) << ',' << cell(el) << ',' << cell(eh) << '\n';
+  const double nan = std::nan("");
+  for (auto* s : {&st.est_lat, &st.true_lat, &st.est_head, &st.true_head}) s->x.push_back(t.stamp);
+  st.est_lat.y.push_back(lat ? 100.0 * *lat : nan);
+  st.true_lat.y.push_back(tl ? 100.0 * *tl : nan);
+  st.est_head.y.push_back(head.value_or(nan));
+  st.true_head.y.push_back(th.value_or(nan));
+}
+
+Eigen::Isometry3d recording_mount(const io::Recording& rec, const fs::path& dir) {
+  const std::string manifest = (dir / "manifest.yaml").string();
+  if (!rec.manifest["sensors"] || !rec.manifest["sensors"]["lidar"])
+    throw io::InputError(manifest, "", "no sensors.lidar (the LiDAR mount)");
+  return io::decode_sim_config(rec.manifest["sensors"], manifest).lidar.T_base_lidar();
+}
+
+void run(const TrackArgs& a) {
+  if (!fs::is_directory(a.in))
+    throw io::InputError(a.in.string(), "", "expected a recording directory");
+  const io::Recording rec = io::read_recording(a.in);
+  if (rec.cloud_count() == 0 && rec.scans.empty())
+    throw io::InputError(a.in.string(), "", "recording has no LiDAR frames");
+  if (rec.ground_truth.empty())
+    throw io::InputError(a.in.string(), "", "recording has no odometry (ground_truth.csv)");
+  auto tracker = io::make_tracker(a.tracker, a.track_config);
+  auto pipeline = io::make_pipeline(a.detector, a.detect_config, recording_mount(rec, a.in));
+  const OdometrySource odometry = ground_truth_odometry(rec);
+  PartialFile partial{fs::path(a.out.string() + ".partial")};
+  std::ofstream out(partial.path);
+  if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
+  out << "stamp,status,confidence,lateral,heading_deg,spacing,true_lateral,true_heading_deg,"
+         "lateral_error,heading_error_deg\n";
+  Stats st;
+  int skipped = 0;
+  const auto frame = [&](const core::RowObservation& obs) {
+    const auto T = odometry(obs.stamp);
+    if (!T) return void(++skipped);  // no odometry at that stamp: the tracker cannot use it
+    record(tracker->update(obs, *T), rec.ground_truth, out, st);
+  };
+  for (std::size_t i = 0; i < rec.cloud_count(); ++i) frame(pipeline.process(rec.cloud(i)));
+  for (const auto& scan : rec.scans) frame(pipeline.process(scan));
+  out.close();
+  if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
+  fs::rename(partial.path, a.out);
+  partial.done = true;
+  if (!a.svg.empty()) {
+    io::PlotOptions o;
+    o.title = a.detector + " + " + a.tracker + ": deviations (dashed: truth)";
+    o.x_label = "time [s]";
+    o.y_label = "lateral [cm], heading [deg]";
+    io::write_plot(a.svg, {st.est_lat, st.true_lat, st.est_head, st.true_head}, o);
+  }
+  const int frames = st.by_status[0] + st.by_status[1] + st.by_status[2];
+  std::cout << a.tracker << " on " << a.detector << ": " << frames << " frame(s) -> "
+            << a.out.string() << " (tracking " << st.by_status[0] << ", coasting "
+            << st.by_status[1] << ", lost " << st.by_status[2];
+  if (skipped > 0) std::cout << ", " << skipped << " without odometry";
+  std::cout << ")";
+  if (st.scored > 0) {
+    std::cout << std::fixed << std::setprecision(2) << "; lateral RMSE "
+              << 100.0 * std::sqrt(st.sq_lat / st.scored) << " cm, max " << 100.0 * st.max_lat
+              << " cm; heading RMSE " << std::sqrt(st.sq_head / st.scored) << " deg, max "
+              << st.max_head << " deg (" << st.scored << " frames in lanes)";
+  }
+  std::cout << "\n";
+}
+
+}  // namespace
+
+void add_track_command(CLI::App& app) {
+  auto a = std::make_shared<TrackArgs>();
+  CLI::App* c = app.add_subcommand(
+      "track",
+      "Track crop rows over a recording: a row detector on every LiDAR frame, then a row tracker "
+      "with the recording's odometry (for now its ground-truth poses). Output CSV: stamp [s], "
+      "status (tracking | coasting | lost), confidence [0-1], lateral [m] (offset of the robot "
+      "from the corridor centre, left +), heading_deg (robot minus corridor), spacing [m], and "
+      "from the ground truth (in lanes): true_lateral, true_heading_deg, lateral_error, "
+      "heading_error_deg (estimate minus truth). Empty cells: unknown.");
+  std::string detectors, trackers;
+  for (const auto& n : io::detector_names()) detectors += (detectors.empty() ? "" : ", ") + n;
+  for (const auto& n : io::tracker_names()) trackers += (trackers.empty() ? "" : ", ") + n;
+  c->add_option("--in", a->in, "recording directory (rownav sim --out)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  c->add_option("--detector", a->detector, "row detector: " + detectors)->required();
+  c->add_option("--tracker", a->tracker, "row tracker: " + trackers)->required();
+  c->add_option("--out", a->out, "CSV output file")->required();
+  c->add_option("--svg", a->svg, "plot (.svg or .png) of the deviations over time");
+  c->add_option("--detect-config", a->detect_config,
+                "detection config YAML, e.g. config/detect/vineyard.yaml (default: built-in)")
+      ->check(CLI::ExistingFile);
+  c->add_option("--track-config", a->track_config,
+                "tracking config YAML, e.g. config/track/default.yaml (default: built-in)")
+      ->check(CLI::ExistingFile);
+  c->callback([a] { run(*a); });
+}
+
+}  // namespace rownav::app

@@ -1,0 +1,90 @@
+#pragma once
+/// @file model_filter.hpp The model filter of Malavazi 2018 (004_1bee156ef8a2b3f7.txt sec. 2.3,
+/// Fig. 9): data-filter boxes around the followed rows, left / right model selection consistent
+/// with the history, a permanence counter falling back to an initialisation mode, the
+/// pre-control values (mean spacing, steepness, distance to target with the steep-model safety)
+/// and a FIR filter on the output.
+///
+/// The paper filters the LiDAR points with the boxes before RUBY; a tracker sees the detector's
+/// rows, so the boxes gate the detected rows along their support. The followed models are carried
+/// between frames by odometry (the paper's Oz robot had none in the loop).
+#include <deque>
+#include <vector>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/track/tracker_base.hpp"
+
+namespace rownav::track {
+
+/// Parameters of ModelFilterTracker. Paper values where it gives them, rownav otherwise.
+struct ModelFilterConfig {
+  double box_half_width = 0.4;  ///< [m] half width of the data-filter box around a model (rownav)
+  double init_min_distance = 0.3;  ///< [m] without a model: rows nearer are ignored (Malavazi 2018)
+  double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
+  double max_slope_change = 0.1;   ///< [-] |a - a_prev| above this: inconsistent (rownav)
+  double max_offset_change = 0.25;  ///< [m] |b - b_prev| above this: inconsistent (rownav)
+  double spacing_tolerance = 0.4;   ///< [m] |b_l - b_r - mean spacing| above this: inconsistent
+  /// [-] successive rejected frames that erase the followed models (initialisation mode);
+  /// "chosen heuristically" in Malavazi 2018 sec. 2.3.2
+  int permanence_limit = 5;
+  int history_size = 20;  ///< [-] accepted frames averaged for the mean spacing and slope (rownav)
+  /// [-] |a| above this: steep models, distance to target by interception (Malavazi 2018
+  /// sec. 2.3.3; tan 15 deg, rownav)
+  double max_steepness = 0.27;
+  /// [-] FIR impulse response b_0..b_N of eq. (6), newest first; sums to 1 ("empirically tuned",
+  /// Malavazi 2018 sec. 2.3.4; rownav values)
+  std::vector<double> fir_coefficients = {0.5, 0.3, 0.2};
+  TrackerConfig common;  ///< coasting, odometry plausibility, implement target
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("box_half_width", s.box_half_width);
+    v("init_min_distance", s.init_min_distance);
+    v("init_max_distance", s.init_max_distance);
+    v("max_slope_change", s.max_slope_change);
+    v("max_offset_change", s.max_offset_change);
+    v("spacing_tolerance", s.spacing_tolerance);
+    v("permanence_limit", s.permanence_limit);
+    v("history_size", s.history_size);
+    v("max_steepness", s.max_steepness);
+    v("fir_coefficients", s.fir_coefficients);
+    v("common", s.common);
+  }
+  /// Throws std::invalid_argument naming the offending field.
+  void validate() const;
+};
+
+/// Malavazi 2018 model filter as a RowTracker; fills RowTracking::steepness and
+/// distance_to_target.
+class ModelFilterTracker : public TrackerBase {
+ public:
+  /// Validates the config (throws std::invalid_argument).
+  explicit ModelFilterTracker(const ModelFilterConfig& config = {});
+  std::string_view name() const override { return "model_filter"; }
+  const ModelFilterConfig& config() const { return config_; }
+
+ protected:
+  bool has_model() const override { return have_[0] || have_[1]; }
+  void clear_models() override;
+  void predict(const core::Pose2& T_prev_now, const core::Pose2& T_odom_base, double dt) override;
+  bool correct(const core::RowObservation& obs, const core::Pose2& T_odom_base) override;
+  void describe(RowTracking& out) const override;
+  void finish(RowTracking& out) override;
+
+ private:
+  /// Data-filter box test of a detected row against side s (0 left, 1 right).
+  bool in_box(const core::RowLine& r, int s) const;
+  /// Consistency of a candidate with the followed model of side s and the history.
+  bool consistent(const SlopeIntercept& c, int s) const;
+  double mean_spacing() const;
+
+  ModelFilterConfig config_;
+  bool have_[2] = {false, false};                     // left, right
+  SlopeIntercept model_[2];                           // followed models, current base frame
+  double seen_[2] = {0.0, 0.0};                       // stamp of the last acceptance per side
+  int permanence_ = 0;                                // successive rejected frames
+  std::deque<double> spacings_;                       // accepted b_l - b_r
+  std::deque<double> fir_lat_, fir_head_, fir_dist_;  // newest first
+};
+
+}  // namespace rownav::track

@@ -1,0 +1,90 @@
+#pragma once
+/// @file tracker_base.hpp What every row tracker shares: the common config (coasting time,
+/// odometry plausibility, implement target row) and the frame driver that gates time and
+/// odometry, carries the models by odometry, decides tracking / coasting / lost and turns the two
+/// followed rows into corridor deviations.
+#include <array>
+#include <string_view>
+#include <utility>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/track/row_geometry.hpp"
+#include "rownav/track/row_tracker.hpp"
+
+namespace rownav::track {
+
+/// Which followed row an implement is referenced to (RowTracking::target_lateral_error).
+enum class TargetRow : std::uint8_t { none, left, right };
+
+/// Parameters shared by every tracker (rownav; the papers leave them to the integrator).
+struct TrackerConfig {
+  /// [s] coasting on odometry longer than this without an observation: lost, models dropped.
+  /// Must exceed the longest gap to bridge (a 2 s detector blackout, 3 missing vines at 1 m/s).
+  double max_coast_time = 3.0;
+  double max_speed = 3.0;           ///< [m/s] faster odometry increments are jumps (ignored)
+  double max_yaw_rate_deg = 120.0;  ///< [deg/s] faster odometry rotations are jumps (ignored)
+  /// [m] spacing assumed until two rows are seen; the corridor centre of a single row lies half
+  /// of it away (Malavazi 2018 sec. 2.3.3 "a default distance"). 2 m: vineyards.
+  double default_row_spacing = 2.0;
+  TargetRow target_row = TargetRow::none;  ///< implement row: none, left or right
+  double target_offset =
+      0.0;  ///< [m] wanted signed offset of the base from the target row (left +)
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("max_coast_time", s.max_coast_time);
+    v("max_speed", s.max_speed);
+    v("max_yaw_rate_deg", s.max_yaw_rate_deg);
+    v("default_row_spacing", s.default_row_spacing);
+    v("target_row", s.target_row);
+    v("target_offset", s.target_offset);
+  }
+  /// Throws std::invalid_argument naming the offending field.
+  void validate() const;
+};
+
+/// Frame driver of the trackers. update() gates the stamp and the odometry, calls predict() with
+/// the odometry increment, correct() with a usable observation, then fills the deviations from
+/// the followed rows. Stale frames (stamp not after the last one) and non-finite input are
+/// ignored (the last answer is returned); implausible odometry increments are not applied.
+class TrackerBase : public RowTracker {
+ public:
+  explicit TrackerBase(const TrackerConfig& common);
+  RowTracking update(const core::RowObservation& obs, const core::Pose2& T_odom_base) final;
+  void reset() final;
+  const TrackerConfig& common() const { return common_; }
+
+ protected:
+  /// True while the tracker holds row models.
+  virtual bool has_model() const = 0;
+  /// Forgets every model.
+  virtual void clear_models() = 0;
+  /// Carries the models from the previous base frame to the current one (T_prev_now), dt [s].
+  virtual void predict(const core::Pose2& T_prev_now, const core::Pose2& T_odom_base,
+                       double dt) = 0;
+  /// Updates the models with a usable observation; false when nothing was accepted.
+  virtual bool correct(const core::RowObservation& obs, const core::Pose2& T_odom_base) = 0;
+  /// Fills rows, left, right and row_spacing (0: unknown) of `out`.
+  virtual void describe(RowTracking& out) const = 0;
+  /// Last say on the output (e.g. a FIR filter); the default does nothing.
+  virtual void finish(RowTracking& /*out*/) {}
+
+ private:
+  void fill_deviations(RowTracking& out) const;
+
+  TrackerConfig common_;
+  bool started_ = false;
+  double last_stamp_ = 0.0;
+  double last_seen_ = 0.0;  // stamp of the last frame whose observation updated the models
+  core::Pose2 last_pose_;
+  RowTracking last_;
+};
+
+}  // namespace rownav::track
+
+template <>
+struct rownav::core::EnumNames<rownav::track::TargetRow> {
+  using E = rownav::track::TargetRow;
+  static constexpr std::array<std::pair<E, std::string_view>, 3> values{
+      {{E::none, "none"}, {E::left, "left"}, {E::right, "right"}}};
+};

@@ -1,0 +1,172 @@
+// Nehme 2021 sec. 3.3: initialisation (eq. (4)), zone-rule data association, regularised
+// regression (eq. (9)).
+#include "rownav/track/model_matching.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rownav::track {
+
+namespace {
+
+/// Base-frame point of a detected row at the middle of its support (the paper's row centre).
+Eigen::Vector2d centre_of(const core::RowLine& r) {
+  const bool extent = std::isfinite(r.x_min) && std::isfinite(r.x_max) && r.x_max > r.x_min;
+  const double x = extent ? 0.5 * (r.x_min + r.x_max) : 0.0;
+  return {x, r.line.y_at(x)};
+}
+
+bool finite_row(const core::RowLine& r) {
+  return std::isfinite(r.line.point.x()) && std::isfinite(r.line.point.y()) &&
+         std::isfinite(r.line.direction.x()) && std::isfinite(r.line.direction.y()) &&
+         std::abs(r.line.direction.x()) > 1e-6;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+void ModelMatchingConfig::validate() const {
+  core::check_range(assign_zone, 0.01, 1.0, "assign_zone");
+  core::check(reject_zone >= assign_zone, "reject_zone", "must be >= assign_zone");
+  core::check_range(reject_zone, 0.01, 1.0, "reject_zone");
+  core::check_range(buffer_size, 1, 100000, "buffer_size");
+  core::check_non_negative(alpha, "alpha");
+  core::check_positive(model_timeout, "model_timeout");
+  core::check_range(min_follow_support, 1, 100000, "min_follow_support");
+  core::check_range(max_models, 2, 1000, "max_models");
+  core::validate_nested(common, "common");
+}
+
+ModelMatchingTracker::ModelMatchingTracker(const ModelMatchingConfig& config)
+    : TrackerBase((config.validate(), config.common)), config_(config) {}
+
+void ModelMatchingTracker::predict(const core::Pose2& T_prev_now, const core::Pose2&, double) {
+  T_model_base_ = T_model_base_ * T_prev_now;  // the models stay put in the model frame
+}
+
+void ModelMatchingTracker::add_model(const Centre& c, double stamp, bool initial, double x_min,
+                                     double x_max) {
+  // Nehme 2021 eq. (4): y = x tan(gamma) + y_i - x_i tan(gamma).
+  Model m;
+  m.id = next_id_++;
+  m.w1 = c.tan_gamma;
+  m.w0 = c.y - c.x * c.tan_gamma;
+  m.buffer.push_back(c);
+  m.created = m.last_seen = stamp;
+  m.x_min = x_min, m.x_max = x_max;
+  m.support = 1;
+  m.initial = initial;
+  models_.push_back(std::move(m));
+}
+
+void ModelMatchingTracker::fit(Model& m) const {
+  // Nehme 2021 eq. (9), x centred on the buffer mean (same minimiser, better conditioned):
+  // W = (X^T X + alpha a^T a)^-1 (X^T Y + alpha a^T Gamma).
+  const double n = static_cast<double>(m.buffer.size());
+  double xr = 0.0;
+  for (const auto& c : m.buffer) xr += c.x;
+  xr /= n;
+  double sy = 0.0, sxx = 0.0, sxy = 0.0, sg = 0.0;
+  for (const auto& c : m.buffer) {
+    const double dx = c.x - xr;
+    sy += c.y, sxx += dx * dx, sxy += dx * c.y, sg += c.tan_gamma;
+  }
+  const double denom = sxx + config_.alpha * n;
+  if (denom <= 1e-12) return;
+  m.w1 = (sxy + config_.alpha * sg) / denom;
+  m.w0 = sy / n - m.w1 * xr;
+}
+
+double ModelMatchingTracker::median_spacing(double x_robot) const {
+  // Nehme 2021 sec. 3.3: s = median of the differences of successive model intercepts, taken
+  // at the robot's abscissa.
+  std::vector<double> y;
+  for (const auto& m : models_) y.push_back(m.w1 * x_robot + m.w0);
+  std::sort(y.begin(), y.end());
+  std::vector<double> d;
+  for (std::size_t i = 1; i < y.size(); ++i) d.push_back(y[i] - y[i - 1]);
+  const double fallback = common().default_row_spacing;
+  if (d.empty()) return fallback;
+  return std::max(median(std::move(d)), 0.25 * fallback);
+}
+
+bool ModelMatchingTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
+  stamp_ = obs.stamp;
+  const bool init = models_.empty();
+  if (init) T_model_base_ = core::Pose2();
+  const double s = median_spacing(T_model_base_.x);
+  std::vector<bool> touched(models_.size(), false);
+  bool assigned = false;
+  for (const auto& r : obs.rows) {
+    if (!finite_row(r)) continue;
+    const Eigen::Vector2d p = T_model_base_ * centre_of(r);
+    const double heading = r.line.heading() + T_model_base_.theta;
+    const Centre c{p.x(), p.y(), std::tan(core::wrap_angle(heading))};
+    const double xa = (T_model_base_ * Eigen::Vector2d(r.x_min, r.line.y_at(r.x_min))).x();
+    const double xb = (T_model_base_ * Eigen::Vector2d(r.x_max, r.line.y_at(r.x_max))).x();
+    if (init) {
+      add_model(c, obs.stamp, true, std::min(xa, xb), std::max(xa, xb));
+      continue;
+    }
+    std::size_t best = 0;
+    double d_best = 1e300;
+    for (std::size_t j = 0; j < models_.size(); ++j) {
+      const Model& m = models_[j];
+      const double d = std::abs(m.w1 * c.x + m.w0 - c.y) / std::sqrt(1.0 + m.w1 * m.w1);
+      if (d < d_best) d_best = d, best = j;
+    }
+    if (best < touched.size() && d_best < config_.assign_zone * s) {  // assign
+      Model& m = models_[best];
+      m.buffer.push_back(c);
+      while (static_cast<int>(m.buffer.size()) > config_.buffer_size) m.buffer.pop_front();
+      m.last_seen = obs.stamp, ++m.support, touched[best] = true, assigned = true;
+      m.x_min = std::min(m.x_min, std::min(xa, xb)), m.x_max = std::max(m.x_max, std::max(xa, xb));
+    } else if (d_best > config_.reject_zone * s &&
+               static_cast<int>(models_.size()) < config_.max_models) {  // new model
+      add_model(c, obs.stamp, false, std::min(xa, xb), std::max(xa, xb));
+    }  // else: outlier, rejected
+  }
+  for (std::size_t j = 0; j < touched.size(); ++j)
+    if (touched[j]) fit(models_[j]);
+  std::erase_if(models_,
+                [&](const Model& m) { return obs.stamp - m.last_seen > config_.model_timeout; });
+  return init ? !models_.empty() : assigned;
+}
+
+void ModelMatchingTracker::describe(RowTracking& out) const {
+  std::vector<double> offsets;
+  for (const auto& m : models_) {
+    TrackedRow t;
+    t.id = m.id;
+    t.line_base = move_line(line_of({m.w1, m.w0}), T_model_base_);
+    t.offset = t.line_base.y_at(0.0);
+    t.heading = t.line_base.heading();
+    t.x_min = m.x_min - T_model_base_.x;  // extent along the row, relative to the robot
+    t.x_max = m.x_max - T_model_base_.x;
+    t.support = static_cast<int>(m.buffer.size());
+    t.age = stamp_ - m.created;
+    t.last_seen = m.last_seen;
+    out.rows.push_back(t);
+    if (m.initial || t.support >= config_.min_follow_support) offsets.push_back(t.offset);
+  }
+  std::sort(out.rows.begin(), out.rows.end(),
+            [](const TrackedRow& a, const TrackedRow& b) { return a.offset < b.offset; });
+  for (std::size_t i = 0; i < out.rows.size(); ++i) {
+    const auto& m = *std::find_if(models_.begin(), models_.end(),
+                                  [&](const Model& k) { return k.id == out.rows[i].id; });
+    if (!m.initial && out.rows[i].support < config_.min_follow_support) continue;
+    if (out.rows[i].offset >= 0.0 && out.left < 0) out.left = static_cast<int>(i);
+    if (out.rows[i].offset < 0.0) out.right = static_cast<int>(i);
+  }
+  std::sort(offsets.begin(), offsets.end());
+  std::vector<double> d;
+  for (std::size_t i = 1; i < offsets.size(); ++i) d.push_back(offsets[i] - offsets[i - 1]);
+  out.row_spacing = d.empty() ? 0.0 : median(std::move(d));
+}
+
+}  // namespace rownav::track

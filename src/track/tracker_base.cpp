@@ -1,0 +1,106 @@
+#include "rownav/track/tracker_base.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rownav::track {
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// An observation worth correcting with: rows and a finite stamp.
+bool usable(const core::RowObservation& obs) {
+  return obs.status != core::DetectionStatus::no_rows && !obs.rows.empty();
+}
+
+}  // namespace
+
+void TrackerConfig::validate() const {
+  core::check_positive(max_coast_time, "max_coast_time");
+  core::check_positive(max_speed, "max_speed");
+  core::check_positive(max_yaw_rate_deg, "max_yaw_rate_deg");
+  core::check_positive(default_row_spacing, "default_row_spacing");
+  core::check(std::isfinite(target_offset), "target_offset", "must be finite");
+}
+
+TrackerBase::TrackerBase(const TrackerConfig& common) : common_((common.validate(), common)) {}
+
+void TrackerBase::reset() {
+  clear_models();
+  started_ = false;
+  last_ = RowTracking{};
+}
+
+RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pose2& T_odom_base) {
+  if (!std::isfinite(obs.stamp) || !finite(T_odom_base)) return last_;
+  if (started_ && obs.stamp <= last_stamp_) return last_;  // stale or time going backwards
+  if (started_) {
+    const double dt = obs.stamp - last_stamp_;
+    const core::Pose2 step = last_pose_.inverse() * T_odom_base;
+    // An odometry jump (reset, wrong fusion) is not applied: the models stay where they were in
+    // the base frame and the next observation corrects them.
+    const bool jump = step.translation().norm() > common_.max_speed * dt + 0.05 ||
+                      std::abs(step.theta) > common_.max_yaw_rate_deg * kDeg * dt + 0.02;
+    if (dt > common_.max_coast_time) clear_models();
+    if (has_model()) predict(jump ? core::Pose2() : step, T_odom_base, dt);
+  }
+  started_ = true;
+  last_stamp_ = obs.stamp;
+  last_pose_ = T_odom_base;
+  RowTracking out;
+  out.stamp = obs.stamp;
+  if (usable(obs) && correct(obs, T_odom_base)) {
+    last_seen_ = obs.stamp;
+    out.status = TrackStatus::tracking;
+  } else if (has_model() && obs.stamp - last_seen_ <= common_.max_coast_time) {
+    out.status = TrackStatus::coasting;
+  } else {
+    clear_models();
+    out.status = TrackStatus::lost;
+  }
+  out.time_since_observation = has_model() ? obs.stamp - last_seen_ : 0.0;
+  if (has_model()) {
+    describe(out);
+    fill_deviations(out);
+  }
+  if (out.left < 0 && out.right < 0) out.status = TrackStatus::lost;
+  if (out.status != TrackStatus::lost) {
+    const double fresh = 1.0 - out.time_since_observation / common_.max_coast_time;
+    const double sides = (out.left >= 0 && out.right >= 0) ? 1.0 : 0.6;
+    const double det =
+        out.status == TrackStatus::tracking ? std::clamp(obs.confidence, 0.3, 1.0) : 1.0;
+    out.confidence = std::clamp(fresh * sides * det, 0.0, 1.0);
+  }
+  finish(out);
+  last_ = out;
+  return out;
+}
+
+void TrackerBase::fill_deviations(RowTracking& out) const {
+  const bool has_l = out.left >= 0, has_r = out.right >= 0;
+  if (!has_l && !has_r) return;
+  const double spacing = out.row_spacing > 0.0 ? out.row_spacing : common_.default_row_spacing;
+  const auto row = [&](int i) { return out.rows[static_cast<std::size_t>(i)].line_base; };
+  out.centre_line_base = has_l && has_r ? centre_between(row(out.left), row(out.right))
+                         : has_l        ? centre_from_one(row(out.left), true, spacing)
+                                        : centre_from_one(row(out.right), false, spacing);
+  const Deviation d = deviation(out.centre_line_base);
+  out.lateral_error = d.lateral;
+  out.heading_error = d.heading;
+  double slope = 0.0;
+  int n = 0;
+  for (const int i : {out.left, out.right})
+    if (i >= 0) slope += std::abs(slope_intercept(row(i)).a), ++n;
+  out.steepness = slope / n;
+  const int target = common_.target_row == TargetRow::left    ? out.left
+                     : common_.target_row == TargetRow::right ? out.right
+                                                              : -1;
+  if (target >= 0) {  // signed distance of the base from the target row, minus the wanted one
+    const core::Line2 t = row(target);
+    out.target_lateral_error = t.signed_distance(Eigen::Vector2d::Zero()) - common_.target_offset;
+  }
+}
+
+}  // namespace rownav::track

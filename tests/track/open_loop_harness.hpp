@@ -1,0 +1,220 @@
+#pragma once
+// Open-loop tracking scenarios: the scripted pure-pursuit driver drives the simulator along one
+// vineyard corridor; each LiDAR sweep then goes through a detection pipeline and a tracker, with
+// the odometry from a pluggable source (ground-truth poses, optionally with a synthetic drift),
+// and RowTracking is compared with the GroundTruth (lateral / heading error, left +, robot minus
+// corridor). The simulation is run once per scenario; detector x tracker pairs replay it.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rownav/core/angle.hpp"
+#include "rownav/io/detector_registry.hpp"
+#include "rownav/io/tracker_registry.hpp"
+#include "rownav/sim/field_config.hpp"
+#include "rownav/sim/scripted_path.hpp"
+#include "rownav/sim/simulator.hpp"
+#include "rownav/track/row_tracker.hpp"
+
+namespace rownav::test {
+
+/// One open-loop scenario.
+struct OpenLoopScenario {
+  std::string name = "straight";
+  double row_length = 10.0;            // [m]
+  double curvature_amplitude = 0;      // [m] sine bend of the rows
+  double curvature_wavelength = 40.0;  // [m]
+  int gap_count = 0;                   // gaps of gap_length consecutive missing vines (random rows)
+  int gap_length = 3;                  // [-]
+  sim::WeedLevel weeds = sim::WeedLevel::none;
+  double slip_noise = 0.02;         // [-] robot track slip (RobotConfig::slip_noise)
+  double odom_scale_error = 0.0;    // [-] odometry distance scale error (synthetic drift)
+  double odom_yaw_drift_deg = 0.0;  // [deg/s] odometry yaw drift
+  double blackout_start = -1.0;     // [s] detector replaced by no_rows in [start, start + length)
+  double blackout_length = 0.0;     // [s]
+  std::uint64_t seed = 3;
+};
+
+/// What the simulation produced: sweeps and ground truth.
+struct OpenLoopRecording {
+  std::vector<core::PointCloud> clouds;
+  std::vector<sim::GroundTruth> truth;
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+};
+
+struct Capture : sim::SimSink {
+  OpenLoopRecording* rec = nullptr;
+  void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>&) override {
+    rec->clouds.push_back(c);
+  }
+  void on_ground_truth(const sim::GroundTruth& g) override { rec->truth.push_back(g); }
+};
+
+inline sim::FieldConfig open_loop_field(const OpenLoopScenario& s) {
+  sim::FieldConfig c;
+  c.kind = sim::FieldKind::vineyard;
+  c.vineyard.rows = 4;
+  c.vineyard.row_length = s.row_length;
+  c.vineyard.row_spacing = 2.0;
+  c.vineyard.headland_width = 4.0;
+  c.vineyard.gap_count = s.gap_count;
+  c.vineyard.gap_length_plants = s.gap_length;
+  c.vineyard.weeds = s.weeds;
+  c.vineyard.curvature_amplitude = s.curvature_amplitude;
+  c.vineyard.curvature_wavelength = s.curvature_wavelength;
+  c.terrain.roughness = 0.02;
+  c.seed = s.seed;
+  return c;
+}
+
+/// Drives corridor 1 (between rows 1 and 2) at 1 m/s with an OS1-16.
+inline OpenLoopRecording simulate(const OpenLoopScenario& s) {
+  const sim::Field field = sim::generate_field(open_loop_field(s));
+  sim::RobotConfig robot;
+  robot.slip_noise = s.slip_noise;
+  sim::SimConfig config;
+  config.seed = s.seed;
+  sim::PathConfig path;
+  path.corridors = {1};
+  path.lead_in = 1.0;
+  path.lead_out = 0.5;
+  const auto points = sim::build_path(sim::FieldTruth(field), path, robot);
+  const Eigen::Vector2d d = points[1].p - points[0].p;
+  const core::Pose2 start(points[0].p.x(), points[0].p.y(), std::atan2(d.y(), d.x()));
+  sim::Simulator simulator(field, robot, config, start);
+  sim::PathFollower driver(points);
+  OpenLoopRecording rec;
+  rec.T_base_lidar = config.lidar.T_base_lidar();
+  Capture capture;
+  capture.rec = &rec;
+  while (!driver.done() && simulator.time() < 3.0 * s.row_length + 10.0)
+    simulator.step(driver.command(simulator.robot_state().pose), capture);
+  return rec;
+}
+
+/// T_odom_base at a stamp (nullopt: unknown).
+using OdometrySource = std::function<std::optional<core::Pose2>(double)>;
+
+/// Ground-truth poses, interpolated, with an optional drift: every increment's translation is
+/// scaled by (1 + scale_error) and its rotation grows by yaw_drift * dt.
+inline OdometrySource truth_odometry(const std::vector<sim::GroundTruth>& gt, double scale_error,
+                                     double yaw_drift_rad_s) {
+  std::vector<core::StampedPose2> odom;
+  core::Pose2 T;
+  for (std::size_t i = 0; i < gt.size(); ++i) {
+    if (i == 0) {
+      T = gt[0].T_world_base;
+    } else {
+      core::Pose2 step = gt[i - 1].T_world_base.inverse() * gt[i].T_world_base;
+      step = {step.x * (1 + scale_error), step.y * (1 + scale_error),
+              step.theta + yaw_drift_rad_s * (gt[i].stamp - gt[i - 1].stamp)};
+      T = T * step;
+    }
+    odom.push_back({gt[i].stamp, T});
+  }
+  return [odom](double t) -> std::optional<core::Pose2> {
+    const auto it =
+        std::lower_bound(odom.begin(), odom.end(), t,
+                         [](const core::StampedPose2& p, double s) { return p.stamp < s; });
+    if (it == odom.end()) return std::nullopt;
+    if (it == odom.begin() || std::abs(it->stamp - t) < 1e-9) return it->pose;
+    const auto& a = *(it - 1);
+    return core::interpolate(a.pose, it->pose, (t - a.stamp) / (it->stamp - a.stamp));
+  };
+}
+
+/// Scores of one detector x tracker run over a scenario (in-lane frames only).
+struct OpenLoopScore {
+  int frames = 0, lane_frames = 0, scored = 0, lost_in_lane = 0, coasting = 0;
+  double lat_mean = 0, lat_rmse = 0, lat_max = 0, head_rmse_deg = 0, head_max_deg = 0;
+  std::vector<track::TrackStatus> status;  // per frame
+  std::vector<double> stamps;              // per frame
+};
+
+inline const sim::GroundTruth* truth_at(const std::vector<sim::GroundTruth>& gt, double t) {
+  const auto it = std::lower_bound(gt.begin(), gt.end(), t - 0.026,
+                                   [](const sim::GroundTruth& g, double s) { return g.stamp < s; });
+  return it != gt.end() && std::abs(it->stamp - t) <= 0.026 ? &*it : nullptr;
+}
+
+/// Replays a recording through detector `detector` and tracker `tracker` ("none": the raw
+/// detector corridor).
+inline OpenLoopScore run_open_loop(const OpenLoopRecording& rec, const OpenLoopScenario& s,
+                                   const std::string& detector, const std::string& tracker) {
+  auto pipeline = io::make_pipeline(
+      detector, std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml", rec.T_base_lidar);
+  std::unique_ptr<track::RowTracker> trk;
+  if (tracker != "none") trk = io::make_tracker(tracker, {});
+  const OdometrySource odom =
+      truth_odometry(rec.truth, s.odom_scale_error, core::deg2rad(s.odom_yaw_drift_deg));
+  OpenLoopScore sc;
+  double sq_lat = 0, sq_head = 0;
+  for (const auto& cloud : rec.clouds) {
+    const double t = cloud.stamp;
+    const auto T = odom(t);
+    if (!T) continue;
+    core::RowObservation obs = pipeline.process(cloud);
+    const double t0 = rec.truth.front().stamp;
+    if (t - t0 >= s.blackout_start && t - t0 < s.blackout_start + s.blackout_length) {
+      obs = core::RowObservation();  // artificial blackout: no_rows
+      obs.stamp = t;
+    }
+    track::RowTracking out;
+    if (trk) {
+      out = trk->update(obs, *T);
+    } else if (obs.corridor) {  // raw detector corridor (CorridorObservation sign convention)
+      out.status = track::TrackStatus::tracking;
+      out.lateral_error = -obs.corridor->offset * std::cos(obs.corridor->heading);
+      out.heading_error = -obs.corridor->heading;
+    }
+    ++sc.frames;
+    sc.status.push_back(out.status);
+    sc.stamps.push_back(t);
+    const sim::GroundTruth* g = truth_at(rec.truth, t);
+    if (!g || g->place != sim::Place::lane) continue;
+    ++sc.lane_frames;
+    if (out.status == track::TrackStatus::lost) {
+      ++sc.lost_in_lane;
+      continue;
+    }
+    if (out.status == track::TrackStatus::coasting) ++sc.coasting;
+    const double el = out.lateral_error - g->lateral_error;
+    const double eh = core::rad2deg(core::angle_diff(out.heading_error, g->heading_error));
+    sq_lat += el * el, sq_head += eh * eh, sc.lat_mean += el, ++sc.scored;
+    sc.lat_max = std::max(sc.lat_max, std::abs(el));
+    sc.head_max_deg = std::max(sc.head_max_deg, std::abs(eh));
+  }
+  if (sc.scored > 0) {
+    sc.lat_rmse = std::sqrt(sq_lat / sc.scored);
+    sc.lat_mean /= sc.scored;
+    sc.head_rmse_deg = std::sqrt(sq_head / sc.scored);
+  }
+  return sc;
+}
+
+/// The scenario set of the issue: straight, gently curved, missing vines, weeds, slip.
+inline std::vector<OpenLoopScenario> open_loop_scenarios() {
+  std::vector<OpenLoopScenario> v;
+  OpenLoopScenario s;
+  v.push_back(s);
+  s.name = "curved", s.curvature_amplitude = 0.3;
+  v.push_back(s);
+  s = {}, s.name = "gaps_3", s.gap_count = 6, s.gap_length = 3;
+  v.push_back(s);
+  s = {}, s.name = "gaps_5", s.gap_count = 6, s.gap_length = 5;
+  v.push_back(s);
+  s = {}, s.name = "weeds_some", s.weeds = sim::WeedLevel::some;
+  v.push_back(s);
+  s = {}, s.name = "weeds_many", s.weeds = sim::WeedLevel::many;
+  v.push_back(s);
+  s = {}, s.name = "slip_drift", s.slip_noise = 0.1, s.odom_scale_error = 0.03,
+  s.odom_yaw_drift_deg = 0.5;
+  v.push_back(s);
+  return v;
+}
+
+}  // namespace rownav::test
