@@ -6,6 +6,8 @@
 
 #include "commands.hpp"
 #include "rownav/io/closed_loop_runner.hpp"
+#include "rownav/io/controller_registry.hpp"
+#include "rownav/io/tracker_registry.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/mission_io.hpp"
 #include "rownav/io/progress.hpp"
@@ -14,23 +16,23 @@
 #include "rownav/io/yaml_config.hpp"
 #include "run_mission.hpp"
 #include "setup.hpp"
-#include "temp_nav_doubles.hpp"
 
 namespace rownav::app {
 
 namespace {
 
-// TEMPORARY until io::make_tracker / io::make_controller are merged: only the doubles exist.
+// Tracker and controller from their registries (config/track/default.yaml and
+// config/control/default.yaml document every default); bad names / files fail here, before the
+// simulation starts.
 void make_stack(const RunArgs& a, io::ClosedLoopSetup& s) {
-  if (a.tracker != "pass_through")
-    throw io::InputError("--tracker", "",
-                         "unknown tracker '" + a.tracker + "' (known in this build: pass_through)");
-  if (a.controller != "proportional")
-    throw io::InputError(
-        "--controller", "",
-        "unknown controller '" + a.controller + "' (known in this build: proportional)");
-  s.make_tracker = [] { return std::make_unique<test::PassThroughTracker>(); };
-  s.make_controller = [] { return std::make_unique<test::ProportionalController>(); };
+  const std::filesystem::path track_config = a.track_config.value_or("");
+  const std::filesystem::path control_config = a.control_config.value_or("");
+  io::make_tracker(a.tracker, track_config);
+  io::make_controller(a.controller, control_config);
+  s.make_tracker = [name = a.tracker, track_config] { return io::make_tracker(name, track_config); };
+  s.make_controller = [name = a.controller, control_config] {
+    return io::make_controller(name, control_config);
+  };
 }
 
 void print_summary(const io::RunSummary& s, const RunArgs& a) {
@@ -113,8 +115,8 @@ void add_run_command(CLI::App& app) {
   c->add_option("--sensor", a->sensor, "sensors YAML (config/sensors); default OS1-16")
       ->check(CLI::ExistingFile);
   c->add_option("--detector", a->detector, "row detector (default hough_skew)");
-  c->add_option("--tracker", a->tracker, "row tracker (this build: pass_through)");
-  c->add_option("--controller", a->controller, "path controller (this build: proportional)");
+  c->add_option("--tracker", a->tracker, "row tracker: model_matching, line_ekf, model_filter (default), none (raw detector corridor)");
+  c->add_option("--controller", a->controller, "path controller: stanley (default), lookahead_pid, fir_pid, pure_pursuit");
   c->add_option("--detect-config", a->detect_config, "detection config YAML")
       ->check(CLI::ExistingFile);
   c->add_option("--track-config", a->track_config, "tracker config YAML")->check(CLI::ExistingFile);

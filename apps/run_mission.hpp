@@ -13,8 +13,8 @@ struct RunArgs {
   std::optional<std::filesystem::path> sensor, detect_config, track_config, control_config,
       nav_config;
   std::string detector = "hough_skew";
-  std::string tracker = "pass_through";
-  std::string controller = "proportional";
+  std::string tracker = "model_filter";
+  std::string controller = "stanley";
   std::uint64_t seed = 1;
   double time_limit = 1800.0;  ///< [s] simulated
   bool quiet = false;

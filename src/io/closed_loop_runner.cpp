@@ -5,7 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rownav/control/velocity_limits.hpp"
 #include "rownav/io/detector_registry.hpp"
+#include "rownav/io/localize_setup.hpp"
 #include "rownav/sim/field_truth.hpp"
 
 namespace rownav::io {
@@ -111,20 +113,6 @@ FrameSample score_frame(const track::RowTracking& t, const sim::GroundTruth& g, 
 
 }  // namespace
 
-void DriftingTruthOdometry::on_physics_step(const sim::RobotState& truth) {
-  if (!last_truth_) {
-    last_truth_ = truth.pose;
-    pose_ = core::Pose2();
-    return;
-  }
-  // Increment in the previous body frame, distorted by the scale errors, re-composed.
-  const core::Pose2 d = last_truth_->inverse() * truth.pose;
-  const core::Pose2 dd(d.x * (1.0 + ds_), d.y * (1.0 + ds_), d.theta * (1.0 + dyaw_));
-  pose_ = *pose_ * dd;
-  last_truth_ = truth.pose;
-  twist_ = truth.twist;
-}
-
 core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& order, int block,
                           navigate::TurnSide first_turn, double lead_in) {
   const auto& c0 = truth.corridor_centre(block, order.front());
@@ -164,7 +152,9 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   auto tracker = setup.make_tracker();
   auto controller = setup.make_controller();
   std::unique_ptr<OdometrySource> odom =
-      setup.make_odometry ? setup.make_odometry() : std::make_unique<DriftingTruthOdometry>();
+      setup.make_odometry
+          ? setup.make_odometry()
+          : std::make_unique<LocalizerOdometry>(localizer_config_for(setup.robot, setup.sensors));
   navigate::EndOfRowDetector eor(setup.end_of_row);
   navigate::Navigator nav(setup.navigator, result.order, setup.mission.first_turn, *tracker,
                           *controller, eor);
@@ -172,6 +162,15 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   limits.width = setup.robot.width;
   limits.base_to_front = setup.robot.base_to_front;
   limits.turn = {setup.robot.can_turn_in_place(), setup.robot.min_turn_radius()};
+  // The robot's limits are applied to every command, as a base controller would (the
+  // controllers and manoeuvres do not clamp themselves).
+  control::VelocityLimits vlim;
+  vlim.max_speed = setup.robot.max_speed;
+  vlim.max_reverse_speed = setup.robot.max_reverse_speed;
+  vlim.max_yaw_rate = setup.robot.max_yaw_rate;
+  vlim.max_accel = setup.robot.max_accel;
+  vlim.max_yaw_accel = setup.robot.max_yaw_accel;
+  vlim.min_turn_radius = setup.robot.min_turn_radius();
 
   sim::Simulator sim(*setup.field, setup.robot, setup.sensors, start);
   RunnerSink sink(*odom, sim, *setup.field, result);
@@ -197,7 +196,9 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
       in.stamp = sim.time();
       in.T_odom_base = T;
       in.twist = odom->twist();
-      in.tracking = tracker->update(in.observation, T);
+      // The frame is stamped at the start of the sweep: the tracker gets the pose of that instant.
+      in.tracking =
+          tracker->update(in.observation, odom->T_odom_base(in.observation.stamp).value_or(T));
       in.end_of_row = eor.update(pipeline.last_cloud_base(), pipeline.last_points(), in.tracking);
       in.points_base = pipeline.last_points();
       in.robot = limits;
@@ -209,7 +210,7 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
     } else {
       out = nav.hold(sim.time(), T);
     }
-    cmd = out.cmd;
+    cmd = control::apply_limits(out.cmd, cmd, sim.dt(), vlim);
     sink.state = out.state;
     sink.planned = out.corridor;
     sink.cmd = cmd;
@@ -220,6 +221,11 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
         result.entries.emplace_back(e.corridor, sim.ground_truth().corridor);
       result.events.push_back(std::move(e));
     }
+    // Row ends estimated by the stack (odom frame), mapped into the world through the robot's
+    // true pose at this instant: the error measured is that of the LiDAR estimate relative to
+    // the robot (003 Table II), not the odometry drift accumulated since the start.
+    for (std::size_t k = result.row_ends_world.size(); k < nav.row_ends_odom().size(); ++k)
+      result.row_ends_world.push_back(sim.robot_state().pose * (T.inverse() * nav.row_ends_odom()[k]));
     result.served = out.served;
     if (out.state == navigate::NavState::done || out.state == navigate::NavState::safe_stop) {
       result.stop_reason = out.stop_reason;
@@ -232,7 +238,6 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   }
   result.final_state = nav.state();
   result.turns = nav.turns();
-  for (const auto& p : nav.row_ends_odom()) result.row_ends_world.push_back(start * p);
   result.sim_time = sim.time();
   result.wall_time = std::chrono::duration<double>(Clock::now() - wall0).count();
   return result;

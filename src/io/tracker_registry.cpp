@@ -9,6 +9,7 @@
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/track/line_ekf.hpp"
 #include "rownav/track/model_filter.hpp"
+#include "rownav/track/raw_corridor.hpp"
 #include "rownav/track/model_matching.hpp"
 
 namespace rownav::io {
@@ -50,6 +51,7 @@ const std::vector<Entry>& registry() {
       {"model_matching", creator<track::ModelMatchingTracker, track::ModelMatchingConfig>()},
       {"line_ekf", creator<track::LineEkfTracker, track::LineEkfConfig>()},
       {"model_filter", creator<track::ModelFilterTracker, track::ModelFilterConfig>()},
+      {"none", creator<track::RawCorridorTracker, track::RawCorridorConfig>()},
   };
   return entries;
 }

@@ -106,9 +106,15 @@ bool PoseEkf::predict_to(double stamp) {
 
 template <int M>
 void PoseEkf::correct(const Eigen::Matrix<double, M, 1>& y, const Eigen::Matrix<double, M, 6>& H,
-                      const Eigen::Matrix<double, M, M>& R) {
+                      const Eigen::Matrix<double, M, M>& R, bool update_pose) {
   const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + R;
-  const Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S.inverse();
+  Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S.inverse();
+  // Velocity measurements (wheels, gyro) correct the velocity and bias states only: through
+  // the cross-covariance the optimal gain would also shift x, y, theta, which made the pose
+  // slide sideways while the robot rotated in place (closed-loop demo). The pose stays the
+  // integral of the estimated velocities (a Schmidt / consider update; the Joseph form below
+  // is valid for any gain).
+  if (!update_pose) K.template topRows<3>().setZero();
   x_ += K * y;
   x_(kTh) = core::wrap_angle(x_(kTh));
   // Joseph form keeps P symmetric positive semi-definite.
@@ -132,7 +138,7 @@ bool PoseEkf::update_odometry(double stamp, const core::Twist2& t, bool stationa
                         ? config_.stationary_std
                         : config_.odom_omega_std + config_.odom_omega_rel_std * std::abs(t.omega);
   const Eigen::Vector2d y(t.v - x_(kV), t.omega - x_(kW));
-  correct<2>(y, H, Eigen::Vector2d(sq(sv), sq(sw)).asDiagonal().toDenseMatrix());
+  correct<2>(y, H, Eigen::Vector2d(sq(sv), sq(sw)).asDiagonal().toDenseMatrix(), false);
   return true;
 }
 
@@ -148,7 +154,7 @@ bool PoseEkf::update_gyro(double stamp, double yaw_rate) {
   Eigen::Matrix<double, 1, 1> y, R;
   y(0) = yaw_rate - (x_(kW) + x_(kB));
   R(0) = sq(config_.gyro_std);
-  correct<1>(y, H, R);
+  correct<1>(y, H, R, false);
   return true;
 }
 
@@ -169,7 +175,7 @@ bool PoseEkf::update_position(double stamp, const Eigen::Vector2d& p, double std
     ++rejected_outliers_;
     return false;
   }
-  correct<2>(y, H, R);
+  correct<2>(y, H, R, true);
   return true;
 }
 

@@ -39,6 +39,7 @@ void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
                             std::to_string(change.shift) + " corridor(s), spacing " + fmt(spacing) +
                             " m, towards corridor " + std::to_string(change.to)});
   centre_odom_.reset();
+  entry_seen_.reset();
   left_end_.reset();
   right_end_.reset();
   end_arc_.reset();
@@ -76,7 +77,18 @@ void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out
 
 void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp) {
   const core::Line2 line = manoeuvre_->entry_line_odom();
-  out.cmd = follow_line(line, T, config_.entry_speed);
+  // Once the target corridor's two rows are tracked and agree with the plan, steer on them
+  // rather than on the dead-reckoned entry line (004 sec. 4: dead reckoning alone misses rows);
+  // the seen line is kept in odom for the control steps between LiDAR frames.
+  if (in != nullptr && in->tracking.status == track::TrackStatus::tracking &&
+      in->tracking.left >= 0 && in->tracking.right >= 0) {
+    core::Line2 seen = in->tracking.centre_line_base.transformed(T);
+    if (seen.direction.dot(line.direction) < 0.0) seen.direction = -seen.direction;
+    const double diff =
+        std::abs(seen.signed_distance(T.translation()) - line.signed_distance(T.translation()));
+    if (diff < config_.entry_gate * spacing_) entry_seen_ = seen;
+  }
+  out.cmd = follow_line(entry_seen_.value_or(line), T, config_.entry_speed);
   if (in == nullptr) return;
   const double depth = line.arc(T.translation()) - config_.exit_distance;
   const int to = order_[leg_ + 1];
@@ -92,6 +104,9 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
                   "corridor seen " + fmt(diff) + " m from the planned one");
     ++leg_;
     state_ = NavState::in_row;
+    // The end-of-row detector saw no rows ahead all through the headland and latches; the new
+    // corridor starts with a fresh decision.
+    end_of_row_.reset();
     last_seen_ = stamp;
     manoeuvre_.reset();
     out.events.push_back(

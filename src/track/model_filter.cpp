@@ -56,8 +56,13 @@ void ModelFilterTracker::clear_models() {
 }
 
 void ModelFilterTracker::predict(const core::Pose2& T_prev_now, const core::Pose2&, double) {
+  const core::Pose2 T_now_prev = T_prev_now.inverse();
   for (int s = 0; s < 2; ++s)
-    if (have_[s]) model_[s] = move_line(model_[s], T_prev_now);
+    if (have_[s]) {
+      model_[s] = move_line(model_[s], T_prev_now);
+      first_[s] = T_now_prev * first_[s];
+      last_[s] = T_now_prev * last_[s];
+    }
 }
 
 double ModelFilterTracker::mean_spacing() const {
@@ -118,7 +123,13 @@ bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Po
   }
   permanence_ = 0;
   for (int s = 0; s < 2; ++s)
-    if (ok[s]) model_[s] = cand[s], have_[s] = true, seen_[s] = obs.stamp;
+    if (ok[s]) {
+      model_[s] = cand[s], have_[s] = true, seen_[s] = obs.stamp;
+      const auto& r = obs.rows[std::size_t(pick[s])];
+      first_[s] = {r.x_min, r.line.y_at(r.x_min)};
+      last_[s] = {r.x_max, r.line.y_at(r.x_max)};
+      support_[s] = r.support;
+    }
   // Update filters: a side not seen for the coasting time is dropped.
   for (int s = 0; s < 2; ++s)
     if (have_[s] && obs.stamp - seen_[s] > common().max_coast_time) have_[s] = false;
@@ -138,6 +149,9 @@ void ModelFilterTracker::describe(RowTracking& out) const {
     t.offset = model_[s].b;
     t.heading = std::atan(model_[s].a);
     t.last_seen = seen_[s];
+    t.x_min = first_[s].x();
+    t.x_max = last_[s].x();
+    t.support = support_[s];
     out.rows.push_back(t);
     (s == 0 ? out.left : out.right) = static_cast<int>(out.rows.size()) - 1;
   }

@@ -1,7 +1,7 @@
 #pragma once
-// Test doubles for the navigation stack: a pass-through row tracker and a proportional
-// heading + lateral controller. They stand in for the real trackers / controllers in the
-// navigator and closed-loop tests (and, temporarily, in the CLI: apps/temp_nav_doubles.hpp).
+// Test doubles for the navigation stack: a proportional heading + lateral controller (a
+// controller with no state, so navigator tests do not depend on the real controllers' tuning)
+// and the raw-corridor tracker under its old name.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -9,61 +9,13 @@
 
 #include "rownav/control/controller.hpp"
 #include "rownav/core/row_observation.hpp"
+#include "rownav/track/raw_corridor.hpp"
 #include "rownav/track/row_tracker.hpp"
 
 namespace rownav::test {
 
-/// Turns RowObservation::corridor into RowTracking; through gaps it carries the last corridor
-/// centre line by odometry (coasting), lost after `max_coast` seconds.
-class PassThroughTracker : public track::RowTracker {
- public:
-  explicit PassThroughTracker(double max_coast = 1.0) : max_coast_(max_coast) {}
-  std::string_view name() const override { return "pass_through"; }
-  void reset() override { last_.reset(); }
-
-  track::RowTracking update(const core::RowObservation& obs, const core::Pose2& T) override {
-    track::RowTracking t;
-    t.stamp = obs.stamp;
-    if (obs.corridor) {
-      const auto& c = *obs.corridor;
-      t.centre_line_base = core::Line2({0.0, c.offset}, {std::cos(c.heading), std::sin(c.heading)});
-      t.row_spacing = c.width;
-      spacing_ = c.width > 0.0 ? c.width : spacing_;
-      for (std::size_t i = 0; i < obs.rows.size(); ++i) {
-        const auto& r = obs.rows[i];
-        t.rows.push_back({static_cast<int>(i), r.line, r.offset, r.heading, r.x_min, r.x_max,
-                          r.support, 0.0, obs.stamp});
-      }
-      t.left = obs.left;
-      t.right = obs.right;
-      t.status = track::TrackStatus::tracking;
-      t.confidence = obs.confidence;
-      last_ = {obs.stamp, t.centre_line_base.transformed(T)};
-    } else if (last_ && obs.stamp - last_->stamp <= max_coast_) {
-      t.centre_line_base = last_->centre_odom.transformed(T.inverse());
-      t.row_spacing = spacing_;
-      t.status = track::TrackStatus::coasting;
-      t.confidence = 0.5;
-    } else {
-      return t;  // lost
-    }
-    if (t.centre_line_base.direction.x() < 0.0)
-      t.centre_line_base.direction = -t.centre_line_base.direction;
-    t.lateral_error = -t.centre_line_base.y_at(0.0);
-    t.heading_error = -t.centre_line_base.heading();
-    t.time_since_observation = last_ ? obs.stamp - last_->stamp : 0.0;
-    return t;
-  }
-
- private:
-  struct Last {
-    double stamp;
-    core::Line2 centre_odom;
-  };
-  double max_coast_;
-  double spacing_ = 0.0;
-  std::optional<Last> last_;
-};
+/// The navigator tests follow the raw detector corridor (the library's `none` tracker).
+using PassThroughTracker = track::RawCorridorTracker;
 
 /// omega = -k_lat * lateral_error - k_head * heading_error, v = speed_ref (slower near obstacles).
 class ProportionalController : public control::PathController {

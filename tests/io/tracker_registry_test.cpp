@@ -35,7 +35,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(TrackerRegistry, BuildsEveryTrackerFromDefaultsAndTheDefaultFile) {
-  ASSERT_EQ(tracker_names().size(), 3u);
+  ASSERT_EQ(tracker_names().size(), 4u);  // model_matching, line_ekf, model_filter, none
   for (const auto& name : tracker_names()) {
     EXPECT_EQ(make_tracker(name, {})->name(), name);
     EXPECT_EQ(make_tracker(name, kDefault)->name(), name);

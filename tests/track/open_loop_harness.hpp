@@ -147,8 +147,8 @@ inline OpenLoopScore run_open_loop(const OpenLoopRecording& rec, const OpenLoopS
                                    const std::string& detector, const std::string& tracker) {
   auto pipeline = io::make_pipeline(
       detector, std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml", rec.T_base_lidar);
-  std::unique_ptr<track::RowTracker> trk;
-  if (tracker != "none") trk = io::make_tracker(tracker, {});
+  // "none" is the registry's raw-corridor tracker (track/raw_corridor.hpp).
+  const std::unique_ptr<track::RowTracker> trk = io::make_tracker(tracker, {});
   const OdometrySource odom =
       truth_odometry(rec.truth, s.odom_scale_error, core::deg2rad(s.odom_yaw_drift_deg));
   OpenLoopScore sc;
@@ -163,14 +163,7 @@ inline OpenLoopScore run_open_loop(const OpenLoopRecording& rec, const OpenLoopS
       obs = core::RowObservation();  // artificial blackout: no_rows
       obs.stamp = t;
     }
-    track::RowTracking out;
-    if (trk) {
-      out = trk->update(obs, *T);
-    } else if (obs.corridor) {  // raw detector corridor (CorridorObservation sign convention)
-      out.status = track::TrackStatus::tracking;
-      out.lateral_error = -obs.corridor->offset * std::cos(obs.corridor->heading);
-      out.heading_error = -obs.corridor->heading;
-    }
+    const track::RowTracking out = trk->update(obs, *T);
     ++sc.frames;
     sc.status.push_back(out.status);
     sc.stamps.push_back(t);

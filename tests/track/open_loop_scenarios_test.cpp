@@ -84,9 +84,14 @@ TEST(OpenLoop, BlackoutCoastsThenTracksAgain) {
       }
       if (t >= 6.0 && t < 7.0) tracking_after += sc.status[i] == track::TrackStatus::tracking;
     }
+    EXPECT_GE(tracking_after, 8);
+    if (tracker == "none") {  // the raw corridor coasts for its 1 s, then reports lost
+      EXPECT_GE(coasting, 8);
+      EXPECT_GE(lost, 8);
+      continue;
+    }
     EXPECT_GE(coasting, 18);  // 20 sweeps in 2 s, all carried by odometry
     EXPECT_EQ(lost, 0);
-    EXPECT_GE(tracking_after, 8);
   }
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rownav/control/controller.hpp"
+#include "rownav/localize/localizer.hpp"
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/mission_plan.hpp"
 #include "rownav/navigate/navigator.hpp"
@@ -23,7 +24,7 @@ namespace rownav::io {
 
 /// Where the navigation stack gets T_odom_base from. Receives every simulator sample (encoders,
 /// IMU, GNSS) as a SimSink; the runner also hands it the true state after each physics step
-/// (used only by the temporary truth-based source below).
+/// (for sources that model odometry from the truth, e.g. in ablations).
 class OdometrySource : public sim::SimSink {
  public:
   virtual void on_physics_step(const sim::RobotState& /*truth*/) {}
@@ -32,21 +33,23 @@ class OdometrySource : public sim::SimSink {
   virtual core::Twist2 twist() const = 0;
 };
 
-/// TEMPORARY default until localize::Localizer is merged: the simulator's true motion,
-/// integrated with a scale error on distance and on yaw (a drifting odometry). Replace by the
-/// Localizer fed with encoders + IMU at merge.
-class DriftingTruthOdometry : public OdometrySource {
+/// The robot's own odometry: localize::Localizer (wheel encoders + IMU, + GNSS when the sensors
+/// have it) with the NOMINAL kinematics the firmware assumes (io::localizer_config_for). The
+/// odom frame starts at the start pose.
+class LocalizerOdometry : public OdometrySource {
  public:
-  explicit DriftingTruthOdometry(double distance_scale_error = 0.01, double yaw_scale_error = 0.02)
-      : ds_(distance_scale_error), dyaw_(yaw_scale_error) {}
-  void on_physics_step(const sim::RobotState& truth) override;
-  std::optional<core::Pose2> T_odom_base(double) const override { return pose_; }
-  core::Twist2 twist() const override { return twist_; }
+  explicit LocalizerOdometry(const localize::LocalizerConfig& config) : localizer_(config) {}
+  void on_encoders(const core::WheelEncoderSample& s) override { localizer_.add_encoders(s); }
+  void on_imu(const core::ImuSample& s) override { localizer_.add_imu(s); }
+  void on_gnss(const core::GnssFix& s) override { localizer_.add_gnss(s); }
+  std::optional<core::Pose2> T_odom_base(double stamp) const override {
+    return localizer_.T_odom_base(stamp);
+  }
+  core::Twist2 twist() const override { return localizer_.latest().twist; }
+  const localize::Localizer& localizer() const { return localizer_; }
 
  private:
-  double ds_, dyaw_;
-  std::optional<core::Pose2> last_truth_, pose_;
-  core::Twist2 twist_;
+  localize::Localizer localizer_;
 };
 
 using TrackerFactory = std::function<std::unique_ptr<track::RowTracker>()>;
@@ -65,7 +68,7 @@ struct ClosedLoopSetup {
   std::filesystem::path detect_config;  ///< empty: detector defaults
   TrackerFactory make_tracker;
   ControllerFactory make_controller;
-  OdometryFactory make_odometry;  ///< empty: DriftingTruthOdometry (TEMPORARY)
+  OdometryFactory make_odometry;  ///< empty: LocalizerOdometry(localizer_config_for(robot, sensors))
   double time_limit = 1200.0;     ///< [s] simulated; the run stops with reason `timeout`
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
@@ -105,7 +108,7 @@ struct RunResult {
   std::vector<RunSample> samples;
   std::vector<FrameSample> frames;
   std::vector<navigate::NavEvent> events;       ///< odom-frame points
-  std::vector<Eigen::Vector2d> row_ends_world;  ///< estimated row ends, mapped by the start pose
+  std::vector<Eigen::Vector2d> row_ends_world;  ///< estimated row ends, mapped by the true pose when estimated
   navigate::NavState final_state = navigate::NavState::in_row;
   navigate::StopReason stop_reason = navigate::StopReason::none;
   int turns = 0;

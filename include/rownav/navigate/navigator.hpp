@@ -193,6 +193,7 @@ class Navigator {
   RobotLimits robot_;
   core::Twist2 last_cmd_;
   std::vector<Eigen::Vector2d> row_ends_;
+  std::optional<core::Line2> entry_seen_;  // target corridor centre seen while entering (odom)
 };
 
 }  // namespace rownav::navigate

@@ -8,6 +8,7 @@
 /// The paper filters the LiDAR points with the boxes before RUBY; a tracker sees the detector's
 /// rows, so the boxes gate the detected rows along their support. The followed models are carried
 /// between frames by odometry (the paper's Oz robot had none in the loop).
+#include <Eigen/Core>
 #include <deque>
 #include <vector>
 
@@ -82,6 +83,10 @@ class ModelFilterTracker : public TrackerBase {
   bool have_[2] = {false, false};                     // left, right
   SlopeIntercept model_[2];                           // followed models, current base frame
   double seen_[2] = {0.0, 0.0};                       // stamp of the last acceptance per side
+  // Extent of the accepted rows' points along x (first / last point, current base frame), carried
+  // by odometry like the models: the end-of-row and row-end logic read it.
+  Eigen::Vector2d first_[2], last_[2];
+  int support_[2] = {0, 0};
   int permanence_ = 0;                                // successive rejected frames
   std::deque<double> spacings_;                       // accepted b_l - b_r
   std::deque<double> fir_lat_, fir_head_, fir_dist_;  // newest first
