@@ -1,4 +1,5 @@
-// Run report: summary.json, report.html (inline SVGs), top_view.svg, trajectory.csv.
+// Run report: summary.json, report.html (inline SVGs), top_view.svg / .png, lateral_error.png,
+// speed.png, trajectory.csv.
 #include "rownav/io/run_report.hpp"
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "rownav/io/plot.hpp"
+#include "rownav/io/png_canvas.hpp"
 #include "rownav/io/svg_canvas.hpp"
 #include "rownav/io/top_view.hpp"
 
@@ -47,8 +49,7 @@ void write_text(const fs::path& file, const std::string& text) {
 }
 
 /// Field, ground-truth corridor centres, driven path coloured by state, estimated row ends.
-std::string top_view(const RunResult& run, const sim::Field& field) {
-  SvgCanvas canvas;
+void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field) {
   TopViewOptions o;
   o.pixels_per_metre = 12;
   o.title = "closed-loop run: true path coloured by navigator state";
@@ -70,11 +71,10 @@ std::string top_view(const RunResult& run, const sim::Field& field) {
     seg.clear();
   }
   for (const auto& p : run.row_ends_world) canvas.dot(p, 4.0, Color::hex("#d62728"));
-  return canvas.document();
 }
 
 /// Lateral error and speed over the driven distance; headland parts shaded.
-std::pair<std::string, std::string> plots(const RunResult& run) {
+void draw_plots(Canvas& lateral, Canvas& speed_canvas, const RunResult& run) {
   Series lat{"true lateral error [m]", {}, {}}, speed{"speed [m/s]", {}, {}},
       cmd{"commanded", {}, {}};
   cmd.color = Color::hex("#ff7f0e");
@@ -95,14 +95,12 @@ std::pair<std::string, std::string> plots(const RunResult& run) {
   }
   po.x_label = "distance [m]";
   po.band_label = "outside rows";
-  SvgCanvas a, b;
   po.title = "lateral error in rows (truth)";
   po.y_label = "m";
-  draw_plot(a, {lat}, po);
+  draw_plot(lateral, {lat}, po);
   po.title = "speed";
   po.y_label = "m/s";
-  draw_plot(b, {speed, cmd}, po);
-  return {a.document(), b.document()};
+  draw_plot(speed_canvas, {speed, cmd}, po);
 }
 
 std::string html_escape(const std::string& s) {
@@ -211,9 +209,19 @@ void write_run_report(const fs::path& out, const RunResult& run, const RunSummar
   if (ec) throw std::runtime_error(partial.string() + ": cannot create: " + ec.message());
   const std::string js = summary_json(summary, names);
   write_text(partial / "summary.json", js + "\n");
-  const std::string top = top_view(run, field);
-  write_text(partial / "top_view.svg", top);
-  write_text(partial / "report.html", html(run, json::parse(js), top, plots(run)));
+  // The same drawings as SVG (inlined in report.html) and as PNG (for slides and READMEs).
+  SvgCanvas top, lateral, speed;
+  draw_top_view(top, run, field);
+  draw_plots(lateral, speed, run);
+  write_text(partial / "top_view.svg", top.document());
+  write_text(partial / "report.html", html(run, json::parse(js), top.document(),
+                                          {lateral.document(), speed.document()}));
+  PngCanvas top_png, lateral_png, speed_png;
+  draw_top_view(top_png, run, field);
+  draw_plots(lateral_png, speed_png, run);
+  top_png.save(partial / "top_view.png");
+  lateral_png.save(partial / "lateral_error.png");
+  speed_png.save(partial / "speed.png");
   write_text(partial / "trajectory.csv", trajectory_csv(run));
   fs::remove_all(out, ec);
   fs::rename(partial, out, ec);
