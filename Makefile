@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps configure build demo test bench format clean
+.PHONY: deps configure build demo test bench bench-suite format clean
 
 deps:
 	scripts/install-deps
@@ -18,13 +18,20 @@ build: configure
 demo: build
 	$(BUILD)/rownav demo --out out/demo
 
-## test: install what is missing, build, run every test
+## test: install what is missing, build, run every test, then the quick closed-loop benchmark
+## (fails when a tracked metric regresses beyond bench/quick_baseline.json's tolerances)
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+	rm -rf $(BUILD)/bench-quick
+	$(BUILD)/rownav bench --quick --out $(BUILD)/bench-quick --jobs $(JOBS)
 
-## bench: run the benchmarks (figures are recorded in BENCHMARK.md)
+## bench: run the micro-benchmarks (figures are recorded in BENCHMARK.md)
 bench: build
 	@for b in $(BUILD)/*_bench; do echo "== $$b"; $$b --benchmark_min_time=0.5; done
+
+## bench-suite: the papers' tables, every method side by side (resumable; out/bench/tables.md)
+bench-suite: build
+	$(BUILD)/rownav bench --out out/bench --jobs $(JOBS)
 
 format:
 	clang-format -i $$(git ls-files '*.hpp' '*.cpp')

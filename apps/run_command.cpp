@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <optional>
 
 #include "commands.hpp"
@@ -33,6 +34,19 @@ void make_stack(const RunArgs& a, io::ClosedLoopSetup& s) {
   s.make_controller = [name = a.controller, control_config] {
     return io::make_controller(name, control_config);
   };
+}
+
+// The detection config: --detect-config, else the crop's shipped one (config/detect/<kind>.yaml
+// under --config-dir, as a user running from the repository expects), else every default.
+std::filesystem::path detect_config_for(const RunArgs& a, const sim::FieldConfig& field) {
+  if (a.detect_config) return *a.detect_config;
+  const sim::FieldKind kind =
+      field.kind == sim::FieldKind::layout ? sim::FieldKind::vineyard : field.kind;
+  const auto crop = a.config_dir / "detect" / (std::string(core::enum_name(kind)) + ".yaml");
+  if (std::filesystem::exists(crop)) return crop;
+  if (!a.quiet)
+    std::cerr << "rownav run: no " << crop.string() << ": detector defaults (pass --detect-config)\n";
+  return {};
 }
 
 void print_summary(const io::RunSummary& s, const RunArgs& a) {
@@ -71,8 +85,9 @@ bool run_mission(const RunArgs& a) {
   s.sensors.seed = a.seed;
   s.mission = io::load_mission(a.mission);
   if (a.nav_config) s.navigator = io::load_config<navigate::NavigatorConfig>(*a.nav_config);
+  if (a.row_end_policy) s.navigator.row_ends.policy = *a.row_end_policy;
   s.detector = a.detector;
-  if (a.detect_config) s.detect_config = *a.detect_config;
+  s.detect_config = detect_config_for(a, field_config);
   s.time_limit = a.time_limit;
   make_stack(a, s);
   std::optional<io::Progress> bar;
@@ -124,6 +139,16 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   c->add_option("--nav-config", a->nav_config, "navigator config YAML (navigate::NavigatorConfig)")
       ->check(CLI::ExistingFile);
+  c->add_option("--config-dir", a->config_dir,
+                 "where config/detect/<crop>.yaml is looked up when --detect-config is not given "
+                 "(default config)");
+  c->add_option("--row-end-policy", a->row_end_policy,
+                "row-end poles policy in the headland: nearest, line_fitting (default)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, navigate::RowEndPolicy>{
+              {"nearest", navigate::RowEndPolicy::nearest},
+              {"line_fitting", navigate::RowEndPolicy::line_fitting}},
+          CLI::ignore_case));
   c->add_option("--seed", a->seed, "simulation seed (default 1)");
   c->add_option("--time-limit", a->time_limit, "[s] simulated time limit (default 1800)");
   c->add_flag("--quiet", a->quiet, "no progress bar");

@@ -5,16 +5,20 @@
 #include <optional>
 #include <string>
 
+#include "rownav/navigate/row_end_poles.hpp"
+
 namespace rownav::app {
 
 /// Options of a closed-loop run (file paths as given on the command line).
 struct RunArgs {
   std::filesystem::path field, robot, mission, out;
+  std::filesystem::path config_dir = "config";  ///< config/detect/<crop>.yaml lives here
   std::optional<std::filesystem::path> sensor, detect_config, track_config, control_config,
       nav_config;
   std::string detector = "hough_skew";
   std::string tracker = "model_filter";
   std::string controller = "stanley";
+  std::optional<navigate::RowEndPolicy> row_end_policy;  ///< overrides the navigator config
   std::uint64_t seed = 1;
   double time_limit = 1800.0;  ///< [s] simulated
   bool quiet = false;
