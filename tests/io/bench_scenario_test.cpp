@@ -113,7 +113,7 @@ TEST(BenchMatrix, RunArgsCarryEverySetting) {
 TEST(BenchScenario, RepositoryScenariosAndFieldsLoad) {
   const fs::path src(ROWNAV_SOURCE_DIR);
   const auto quick = expand_scenario(load_scenario(src / "bench/scenarios/quick.yaml", false));
-  EXPECT_EQ(quick.size(), 3u);  // as stated in quick.yaml
+  EXPECT_EQ(quick.size(), 4u);  // as stated in quick.yaml
   const auto full = expand_scenario(load_scenario(src / "bench/scenarios/full.yaml", false));
   EXPECT_EQ(full.size(), 280u);  // as stated in full.yaml
   for (const auto& e : fs::directory_iterator(src / "bench/fields"))
