@@ -1,0 +1,81 @@
+#pragma once
+/// @file node_config.hpp The node's own settings (private ROS parameters, read generically
+/// through `fields`), and the stack loaded from the same YAML files as the command line.
+#include <string>
+#include <vector>
+
+#include "rownav/control/velocity_limits.hpp"
+#include "rownav/core/config_fields.hpp"
+#include "rownav/navigate/end_of_row.hpp"
+#include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/navigator.hpp"
+
+namespace rownav::ros_bridge {
+
+/// Private parameters of rownav_node (~name). Paths may be empty: that component's defaults.
+/// The component names and files are those of `rownav run` (--detector, --detect-config, ...).
+struct NodeConfig {
+  std::string input = "cloud";           ///< "cloud" (PointCloud2 on `cloud`) or "scan" (`scan`)
+  std::string detector = "hough_skew";   ///< io::detector_names()
+  std::string detect_config;             ///< config/detect/<crop>.yaml
+  std::string tracker = "model_filter";  ///< io::tracker_names()
+  std::string track_config;              ///< config/track/default.yaml
+  std::string controller = "stanley";    ///< io::controller_names()
+  std::string control_config;            ///< config/control/default.yaml
+  std::string mission;                   ///< config/missions/*.yaml (empty: MissionPlan{})
+  std::string nav_config;                ///< navigate::NavigatorConfig YAML
+  std::string end_of_row_config;         ///< navigate::EndOfRowConfig YAML
+  std::string robot;                     ///< config/robots/*.yaml: velocity limits, footprint
+  /// [corridors] in the block (given by the operator: there is no map); 0: the mission's
+  /// highest corridor index + 1
+  int corridor_count = 0;
+  std::string base_frame = "base_link";  ///< REP 105 base frame
+  /// T_base_lidar as [x, y, z, roll, pitch, yaw] (m, rad); empty: looked up in tf2 once
+  std::vector<double> lidar_mount;
+  bool enabled = true;             ///< publish cmd_vel (false: observe only)
+  bool use_imu = false;            ///< gyro yaw rate replaces the odometry yaw rate
+  double odom_history = 2.0;       ///< [s] odometry poses kept for frame-stamp interpolation
+  double max_extrapolation = 0.2;  ///< [s] a frame may be this much newer than the odometry
+  double nominal_frame_period = 0.1;  ///< [s] dt of the first command (acceleration limit)
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("input", s.input);
+    v("detector", s.detector);
+    v("detect_config", s.detect_config);
+    v("tracker", s.tracker);
+    v("track_config", s.track_config);
+    v("controller", s.controller);
+    v("control_config", s.control_config);
+    v("mission", s.mission);
+    v("nav_config", s.nav_config);
+    v("end_of_row_config", s.end_of_row_config);
+    v("robot", s.robot);
+    v("corridor_count", s.corridor_count);
+    v("base_frame", s.base_frame);
+    v("lidar_mount", s.lidar_mount);
+    v("enabled", s.enabled);
+    v("use_imu", s.use_imu);
+    v("odom_history", s.odom_history);
+    v("max_extrapolation", s.max_extrapolation);
+    v("nominal_frame_period", s.nominal_frame_period);
+  }
+  void validate() const;
+};
+
+/// Everything the per-frame processing needs, loaded and validated.
+struct StackSetup {
+  NodeConfig node;
+  navigate::MissionPlan mission;
+  std::vector<int> order;  ///< resolved corridor order
+  navigate::NavigatorConfig navigator;
+  navigate::EndOfRowConfig end_of_row;
+  navigate::RobotLimits robot;
+  control::VelocityLimits limits;
+};
+
+/// Loads the files named in `node` (mission, navigator, end of row, robot) with the CLI's strict
+/// loaders and resolves the corridor order. Throws io::InputError / std::invalid_argument.
+StackSetup load_stack(const NodeConfig& node);
+
+}  // namespace rownav::ros_bridge

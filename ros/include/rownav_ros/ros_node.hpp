@@ -1,0 +1,51 @@
+#pragma once
+/// @file ros_node.hpp rownav_node's ROS side: parameters, subscriptions, tf2, publications.
+/// The processing is RowNavCore's.
+#include <geometry_msgs/PoseArray.h>
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/Vector3Stamped.h>
+#include <ros/ros.h>
+#include <std_msgs/Bool.h>
+#include <std_msgs/String.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <string>
+
+#include "rownav_ros/row_nav_core.hpp"
+
+namespace rownav::ros_bridge {
+
+/// The node. Topics (relative, remappable): subscribes `cloud` or `scan`, `odom`, `imu`
+/// (~use_imu), `~enable` (std_msgs/Bool); publishes `cmd_vel` (unless observing only),
+/// `~tracking` (Vector3Stamped: lateral [m], heading [rad], spacing [m]), `~state`
+/// (std_msgs/String) and `~rows` (PoseArray of the tracked rows, base frame). docs/ros.md.
+class RosNode {
+ public:
+  /// Reads the parameters and loads the stack; throws on a bad parameter or file.
+  RosNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  void on_scan(const sensor_msgs::LaserScan::ConstPtr& msg);
+  void on_odom(const nav_msgs::Odometry::ConstPtr& msg);
+  void on_imu(const sensor_msgs::Imu::ConstPtr& msg);
+  void on_enable(const std_msgs::Bool::ConstPtr& msg);
+  /// Looks T_base_lidar up once (base_frame <- frame); false while tf2 does not know it.
+  bool ensure_mount(const std::string& frame, const ros::Time& stamp);
+  void publish_frame(const FrameResult& r, const ros::Time& stamp);
+  void publish_cmd(const core::Twist2& cmd);
+  void publish_stop();
+
+  ros::NodeHandle nh_, pnh_;
+  std::unique_ptr<RowNavCore> core_;
+  bool enabled_ = true;
+  std::string last_state_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  ros::Subscriber frame_sub_, odom_sub_, imu_sub_, enable_sub_;
+  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_;
+};
+
+}  // namespace rownav::ros_bridge

@@ -1,0 +1,63 @@
+// The node's settings and the stack's files.
+#include "rownav_ros/node_config.hpp"
+
+#include <algorithm>
+
+#include "rownav/io/mission_io.hpp"
+#include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/robot.hpp"
+
+namespace rownav::ros_bridge {
+
+void NodeConfig::validate() const {
+  core::check(input == "cloud" || input == "scan", "input",
+              "must be cloud or scan (got '" + input + "')");
+  core::check_non_negative(corridor_count, "corridor_count");
+  core::check(!base_frame.empty(), "base_frame", "must not be empty");
+  core::check(lidar_mount.empty() || lidar_mount.size() == 6, "lidar_mount",
+              "must be empty or [x, y, z, roll, pitch, yaw]");
+  core::check_positive(odom_history, "odom_history");
+  core::check_non_negative(max_extrapolation, "max_extrapolation");
+  core::check_positive(nominal_frame_period, "nominal_frame_period");
+}
+
+namespace {
+
+template <class T>
+T load_or_default(const std::string& path) {
+  return path.empty() ? T{} : io::load_config<T>(path);
+}
+
+/// The corridor count the order is resolved against: given, or implied by the mission.
+int corridor_count_for(const NodeConfig& node, const navigate::MissionPlan& plan) {
+  if (node.corridor_count > 0) return node.corridor_count;
+  int highest = plan.start_corridor;
+  for (int c : plan.corridors) highest = std::max(highest, c);
+  return highest + 1;
+}
+
+}  // namespace
+
+StackSetup load_stack(const NodeConfig& node) {
+  node.validate();
+  StackSetup s;
+  s.node = node;
+  s.mission = node.mission.empty() ? navigate::MissionPlan{} : io::load_mission(node.mission);
+  s.order = navigate::resolve_order(s.mission, corridor_count_for(node, s.mission));
+  s.navigator = load_or_default<navigate::NavigatorConfig>(node.nav_config);
+  s.end_of_row = load_or_default<navigate::EndOfRowConfig>(node.end_of_row_config);
+  const auto robot = load_or_default<sim::RobotConfig>(node.robot);
+  s.robot.width = robot.width;
+  s.robot.base_to_front = robot.base_to_front;
+  s.robot.turn = {robot.can_turn_in_place(), robot.min_turn_radius()};
+  s.limits.max_speed = robot.max_speed;
+  s.limits.max_reverse_speed = robot.max_reverse_speed;
+  s.limits.max_yaw_rate = robot.max_yaw_rate;
+  s.limits.max_accel = robot.max_accel;
+  s.limits.max_yaw_accel = robot.max_yaw_accel;
+  s.limits.min_turn_radius = robot.min_turn_radius();
+  s.limits.validate();
+  return s;
+}
+
+}  // namespace rownav::ros_bridge

@@ -1,0 +1,155 @@
+// rownav_node's ROS side.
+#include "rownav_ros/ros_node.hpp"
+
+#include <cmath>
+#include <exception>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav_ros/ros_params.hpp"
+
+namespace rownav::ros_bridge {
+
+namespace {
+
+/// NodeConfig from ~params; the navigator / end-of-row files may be overridden key by key
+/// under ~navigator/... and ~end_of_row/... (the same names as in the YAML files).
+StackSetup read_setup(const ros::NodeHandle& pnh) {
+  NodeConfig node;
+  read_config(pnh, "", node);
+  StackSetup s = load_stack(node);
+  read_config(pnh, "navigator", s.navigator);
+  read_config(pnh, "end_of_row", s.end_of_row);
+  return s;
+}
+
+Eigen::Isometry3d mount_from(const std::vector<double>& m) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(m[5], Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(m[4], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(m[3], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(m[0], m[1], m[2]);
+  return T;
+}
+
+}  // namespace
+
+RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
+  core_ = std::make_unique<RowNavCore>(read_setup(pnh_));
+  const NodeConfig& c = core_->setup().node;
+  enabled_ = c.enabled;
+  if (!c.lidar_mount.empty()) core_->set_mount(mount_from(c.lidar_mount));
+  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 1);
+  tracking_pub_ = pnh_.advertise<geometry_msgs::Vector3Stamped>("tracking", 10);
+  state_pub_ = pnh_.advertise<std_msgs::String>("state", 1, /*latch=*/true);
+  rows_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("rows", 10);
+  if (c.input == "cloud")
+    frame_sub_ = nh_.subscribe("cloud", 2, &RosNode::on_cloud, this);
+  else
+    frame_sub_ = nh_.subscribe("scan", 2, &RosNode::on_scan, this);
+  odom_sub_ = nh_.subscribe("odom", 50, &RosNode::on_odom, this);
+  if (c.use_imu) imu_sub_ = nh_.subscribe("imu", 200, &RosNode::on_imu, this);
+  enable_sub_ = pnh_.subscribe("enable", 1, &RosNode::on_enable, this);
+  ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s",
+           c.input.c_str(), c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
+           core_->setup().order.size(), enabled_ ? "driving" : "observing only");
+}
+
+bool RosNode::ensure_mount(const std::string& frame, const ros::Time& stamp) {
+  if (core_->has_mount()) return true;
+  const std::string& base = core_->setup().node.base_frame;
+  try {
+    const auto t = tf_buffer_.lookupTransform(base, frame, stamp, ros::Duration(0.05));
+    core_->set_mount(to_isometry(t.transform));
+    ROS_INFO("rownav_node: T_%s_%s from tf2", base.c_str(), frame.c_str());
+    return true;
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "rownav_node: no transform %s <- %s yet: %s", base.c_str(),
+                      frame.c_str(), e.what());
+    return false;
+  }
+}
+
+void RosNode::on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  try {
+    if (!ensure_mount(msg->header.frame_id, msg->header.stamp)) return publish_stop();
+    publish_frame(core_->on_cloud(*msg), msg->header.stamp);
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "rownav_node: frame dropped: %s", e.what());
+    publish_stop();
+  }
+}
+
+void RosNode::on_scan(const sensor_msgs::LaserScan::ConstPtr& msg) {
+  try {
+    if (!ensure_mount(msg->header.frame_id, msg->header.stamp)) return publish_stop();
+    publish_frame(core_->on_scan(*msg), msg->header.stamp);
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "rownav_node: frame dropped: %s", e.what());
+    publish_stop();
+  }
+}
+
+void RosNode::on_odom(const nav_msgs::Odometry::ConstPtr& msg) {
+  try {
+    if (const auto cmd = core_->on_odom(*msg)) publish_cmd(*cmd);
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "rownav_node: odometry dropped: %s", e.what());
+    publish_stop();
+  }
+}
+
+void RosNode::on_imu(const sensor_msgs::Imu::ConstPtr& msg) {
+  try {
+    core_->on_imu(*msg);
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "rownav_node: IMU sample dropped: %s", e.what());
+  }
+}
+
+void RosNode::on_enable(const std_msgs::Bool::ConstPtr& msg) {
+  if (msg->data == enabled_) return;
+  if (!msg->data) publish_stop();  // the last command sent must not keep the robot moving
+  enabled_ = msg->data;
+  ROS_INFO("rownav_node: %s", enabled_ ? "driving" : "observing only");
+}
+
+void RosNode::publish_cmd(const core::Twist2& cmd) {
+  if (enabled_) cmd_pub_.publish(to_twist_msg(cmd));
+}
+
+void RosNode::publish_stop() { publish_cmd({}); }
+
+void RosNode::publish_frame(const FrameResult& r, const ros::Time& stamp) {
+  if (!r.ok) ROS_WARN_THROTTLE(1.0, "rownav_node: stopping: %s", r.error.c_str());
+  publish_cmd(r.cmd);
+  for (const auto& e : r.events) ROS_INFO("rownav_node: %s", e.text.c_str());
+  const std::string state(core::enum_name(r.state));
+  if (state != last_state_) {
+    std_msgs::String s;
+    s.data = state;
+    state_pub_.publish(s);
+    last_state_ = state;
+  }
+  if (!r.ok) return;
+  geometry_msgs::Vector3Stamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = core_->setup().node.base_frame;
+  t.vector.x = r.tracking.lateral_error;
+  t.vector.y = r.tracking.heading_error;
+  t.vector.z = r.tracking.row_spacing;
+  tracking_pub_.publish(t);
+  geometry_msgs::PoseArray rows;
+  rows.header = t.header;
+  for (const auto& row : r.tracking.rows) {
+    geometry_msgs::Pose p;
+    p.position.y = row.offset;
+    p.orientation.z = std::sin(row.heading / 2.0);
+    p.orientation.w = std::cos(row.heading / 2.0);
+    rows.poses.push_back(p);
+  }
+  rows_pub_.publish(rows);
+}
+
+}  // namespace rownav::ros_bridge

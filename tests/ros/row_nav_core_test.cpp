@@ -1,0 +1,162 @@
+// The node's processing class on synthetic messages: simulated OS1-16 sweeps of a small
+// vineyard as PointCloud2 plus nav_msgs/Odometry, no ROS master.
+#include "rownav_ros/row_nav_core.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "rownav/sim/field_config.hpp"
+#include "rownav/sim/field_truth.hpp"
+#include "rownav/sim/lidar.hpp"
+#include "rownav/sim/lidar_presets.hpp"
+#include "rownav/sim/ray_caster.hpp"
+#include "rownav_ros/odom_buffer.hpp"
+
+namespace rb = rownav::ros_bridge;
+namespace sim = rownav::sim;
+using rownav::core::Pose2;
+
+namespace {
+
+/// Robot in corridor 2 of a 6-row vineyard, `offset` m left of the centre line, heading
+/// `yaw_error` rad left of the corridor direction.
+struct Scene {
+  sim::Field field;
+  Pose2 pose;
+  Scene(double offset, double yaw_error) : field(make_field()) {
+    const auto& c = sim::FieldTruth(field).corridor_centre(0, 2);
+    const std::size_t i = c.size() / 3;
+    const Eigen::Vector2d d = (c[i + 1] - c[i]).normalized(), n(-d.y(), d.x());
+    const Eigen::Vector2d p = c[i] + offset * n;
+    pose = Pose2(p.x(), p.y(), std::atan2(d.y(), d.x()) + yaw_error);
+  }
+  static sim::Field make_field() {
+    sim::FieldConfig f;
+    f.vineyard.rows = 6;
+    f.vineyard.row_length = 30.0;
+    return sim::generate_field(f);
+  }
+};
+
+nav_msgs::Odometry odom_msg(double t, const Pose2& p) {
+  nav_msgs::Odometry o;
+  o.header.stamp.fromSec(t);
+  o.header.frame_id = "odom";
+  o.child_frame_id = "base_link";
+  o.pose.pose.position.x = p.x;
+  o.pose.pose.position.y = p.y;
+  o.pose.pose.orientation.z = std::sin(p.theta / 2.0);
+  o.pose.pose.orientation.w = std::cos(p.theta / 2.0);
+  return o;
+}
+
+rb::StackSetup vineyard_setup() {
+  rb::NodeConfig n;
+  n.detect_config = ROWNAV_SOURCE_DIR "/config/detect/vineyard.yaml";
+  n.track_config = ROWNAV_SOURCE_DIR "/config/track/default.yaml";
+  n.control_config = ROWNAV_SOURCE_DIR "/config/control/default.yaml";
+  n.robot = ROWNAV_SOURCE_DIR "/config/robots/skid_steer.yaml";
+  return rb::load_stack(n);
+}
+
+/// Runs `frames` sweeps at 10 Hz from a static robot; returns the last frame's result.
+rb::FrameResult drive(const Scene& scene, rb::RowNavCore& core, int frames) {
+  const sim::RayCaster caster(scene.field.mesh);
+  const auto lidar_config = sim::lidar_preset("os1_16");
+  sim::Lidar lidar(lidar_config, 5);
+  const Pose2 p = scene.pose;
+  const sim::PoseAt pose_at = [&](double) {
+    Eigen::Isometry3d T = p.to_isometry();
+    T.translation().z() = scene.field.terrain.height(p.x, p.y);
+    return T;
+  };
+  core.set_mount(lidar_config.T_base_lidar());
+  rb::FrameResult r;
+  for (int k = 0; k < frames; ++k) {
+    const double t = 100.0 + 0.1 * k;
+    core.on_odom(odom_msg(t, p));
+    core.on_odom(odom_msg(t + 0.05, p));
+    auto cloud = lidar.sweep(caster, pose_at, t);
+    cloud.frame_id = "os_lidar";
+    r = core.on_cloud(rb::to_cloud_msg(cloud));
+    EXPECT_TRUE(r.ok) << r.error;
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST(RowNavCore, DrivesForwardAndSeesTheOffset) {
+  const Scene scene(0.3, 0.1);  // left of the centre, heading left
+  rb::RowNavCore core(vineyard_setup());
+  const rb::FrameResult r = drive(scene, core, 8);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
+  EXPECT_EQ(r.tracking.status, rownav::track::TrackStatus::tracking);
+  EXPECT_GT(r.tracking.lateral_error, 0.15);
+  EXPECT_LT(r.tracking.lateral_error, 0.45);
+  EXPECT_GT(r.tracking.heading_error, 0.0);
+  EXPECT_GT(r.cmd.v, 0.05);     // forward, ramped up by the acceleration limit
+  EXPECT_LT(r.cmd.omega, 0.0);  // steers back to the right
+  EXPECT_FALSE(core.last_points().empty());
+}
+
+TEST(RowNavCore, MirroredOffsetMirrorsTheSign) {
+  const Scene scene(-0.3, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  const rb::FrameResult r = drive(scene, core, 5);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_LT(r.tracking.lateral_error, -0.15);
+}
+
+TEST(RowNavCore, StopsWithoutMountOrOdometry) {
+  rb::RowNavCore core(vineyard_setup());
+  rownav::core::PointCloud empty;
+  empty.stamp = 10.0;
+  auto r = core.on_cloud(rb::to_cloud_msg(empty));
+  EXPECT_FALSE(r.ok);  // no mount
+  EXPECT_EQ(r.cmd.v, 0.0);
+  core.set_mount(Eigen::Isometry3d::Identity());
+  r = core.on_cloud(rb::to_cloud_msg(empty));
+  EXPECT_FALSE(r.ok);  // no odometry
+  EXPECT_NE(r.error.find("odometry"), std::string::npos);
+  core.on_odom(odom_msg(5.0, {}));
+  r = core.on_cloud(rb::to_cloud_msg(empty));
+  EXPECT_FALSE(r.ok);  // odometry too old for the frame
+  sensor_msgs::PointCloud2 broken;
+  broken.header.stamp.fromSec(5.0);
+  broken.width = broken.height = 1;
+  r = core.on_cloud(broken);  // no x/y/z fields: caught, not thrown
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.cmd.v, 0.0);
+}
+
+TEST(RowNavCore, BadNamesFailAtStartUp) {
+  rb::NodeConfig n;
+  n.detector = "no_such_detector";
+  EXPECT_ANY_THROW(rb::RowNavCore(rb::load_stack(n)));
+  n = {};
+  n.input = "radar";
+  EXPECT_THROW(rb::load_stack(n), std::invalid_argument);
+}
+
+TEST(OdomBuffer, InterpolatesAndExtrapolates) {
+  rb::OdomBuffer b(1.0, 0.2);
+  EXPECT_FALSE(b.at(0.0));
+  EXPECT_TRUE(b.push({1.0, Pose2(0, 0, 0), {1.0, 0.0, 0.0}}));
+  EXPECT_TRUE(b.push({2.0, Pose2(1, 0, 0.2), {1.0, 0.0, 0.0}}));
+  EXPECT_FALSE(b.push({1.5, Pose2(), {}}));  // older than the newest
+  const auto mid = b.at(1.5);
+  ASSERT_TRUE(mid);
+  EXPECT_NEAR(mid->x, 0.5, 1e-12);
+  EXPECT_NEAR(mid->theta, 0.1, 1e-12);
+  const auto ahead = b.at(2.1);
+  ASSERT_TRUE(ahead);
+  EXPECT_NEAR(ahead->x, 1.0 + 0.1 * std::cos(0.2), 1e-12);
+  EXPECT_FALSE(b.at(2.5));  // beyond max_extrapolation
+  EXPECT_FALSE(b.at(0.5));  // before the history
+  b.push({4.0, Pose2(2, 0, 0), {}});
+  EXPECT_FALSE(b.at(1.5));  // trimmed (history 1 s)
+}
