@@ -8,6 +8,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -16,6 +17,10 @@
 #include "rownav/detect/pipeline.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/io/input_error.hpp"
+#include "rownav/io/localize_setup.hpp"
+#include "rownav/io/yaml_config.hpp"
+#include "rownav/localize/gravity_up.hpp"
+#include "rownav/localize/localizer.hpp"
 #include "rownav/io/plot.hpp"
 #include "rownav/io/recording.hpp"
 #include "rownav/io/sim_setup.hpp"
@@ -29,7 +34,8 @@ namespace fs = std::filesystem;
 
 struct TrackArgs {
   std::string detector, tracker;
-  fs::path in, out, svg, detect_config, track_config;
+  fs::path in, out, svg, detect_config, track_config, localize_config;
+  std::string odometry = "localizer";
 };
 
 /// T_odom_base at a stamp, nullopt when unknown. The one place the odometry comes from.
@@ -42,8 +48,7 @@ long before(const std::vector<sim::GroundTruth>& gt, double t) {
   return static_cast<long>(it - gt.begin()) - 1;
 }
 
-// Odometry from the recorded true poses, interpolated (until the wheel + IMU Localizer is
-// available: swap this function).
+// Odometry from the recorded true poses, interpolated (`--odometry truth`: analysis only).
 OdometrySource ground_truth_odometry(const io::Recording& rec) {
   return [&gt = rec.ground_truth](double t) -> std::optional<core::Pose2> {
     const long i = before(gt, t);
@@ -123,6 +128,63 @@ void record(const track::RowTracking& t, const std::vector<sim::GroundTruth>& gt
   st.true_head.y.push_back(th.value_or(nan));
 }
 
+/// The Localizer config: --localize-config, else the nominal one of the recording's robot
+/// (manifest `robot` and `sensors`), else the defaults. `source` says which.
+localize::LocalizerConfig localizer_config(const TrackArgs& a, const io::Recording& rec,
+                                           std::string& source) {
+  if (!a.localize_config.empty()) {
+    source = a.localize_config.string();
+    return io::load_localizer_config(a.localize_config);
+  }
+  const std::string manifest = (a.in / "manifest.yaml").string();
+  if (rec.manifest["robot"] && rec.manifest["sensors"]) {
+    sim::RobotConfig robot;
+    io::decode_config(rec.manifest["robot"], robot, manifest);
+    source = "nominal kinematics of the manifest's robot";
+    return io::localizer_config_for(robot, io::decode_sim_config(rec.manifest["sensors"], manifest));
+  }
+  source = "defaults (no robot in the manifest)";
+  return {};
+}
+
+/// The wheel + IMU (+ GNSS) Localizer fed with the recording's samples in time order up to a
+/// time (a sweep stamped t is complete at t + period: a live robot has every sample up to then).
+class LocalizerReplay {
+ public:
+  LocalizerReplay(const io::Recording& rec, const localize::LocalizerConfig& c)
+      : rec_(rec), loc_(c) {}
+  void feed_until(double t) {
+    for (;;) {
+      const double te = ie_ < rec_.encoders.size() ? rec_.encoders[ie_].stamp : kNever;
+      const double ti = ii_ < rec_.imu.size() ? rec_.imu[ii_].stamp : kNever;
+      const double tg = ig_ < rec_.gnss.size() ? rec_.gnss[ig_].stamp : kNever;
+      const double next = std::min({te, ti, tg});
+      if (!(next <= t)) return;
+      if (te == next) loc_.add_encoders(rec_.encoders[ie_++]);
+      else if (ti == next) loc_.add_imu(rec_.imu[ii_++]);
+      else loc_.add_gnss(rec_.gnss[ig_++]);
+    }
+  }
+  const localize::Localizer& localizer() const { return loc_; }
+
+ private:
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
+  const io::Recording& rec_;
+  localize::Localizer loc_;
+  std::size_t ie_ = 0, ii_ = 0, ig_ = 0;
+};
+
+/// [s] LiDAR period: the median interval between recorded frames (0.1 s when unknown).
+double sweep_period(const io::Recording& rec) {
+  std::vector<double> d;
+  for (std::size_t i = 1; i < rec.cloud_stamps.size(); ++i)
+    d.push_back(rec.cloud_stamps[i] - rec.cloud_stamps[i - 1]);
+  if (d.empty()) return 0.1;
+  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+  const double p = d[d.size() / 2];
+  return p > 0.0 && std::isfinite(p) ? p : 0.1;
+}
+
 Eigen::Isometry3d recording_mount(const io::Recording& rec, const fs::path& dir) {
   const std::string manifest = (dir / "manifest.yaml").string();
   if (!rec.manifest["sensors"] || !rec.manifest["sensors"]["lidar"])
@@ -136,11 +198,24 @@ void run(const TrackArgs& a) {
   const io::Recording rec = io::read_recording(a.in);
   if (rec.cloud_count() == 0 && rec.scans.empty())
     throw io::InputError(a.in.string(), "", "recording has no LiDAR frames");
-  if (rec.ground_truth.empty())
-    throw io::InputError(a.in.string(), "", "recording has no odometry (ground_truth.csv)");
+  const bool truth = a.odometry == "truth";
+  if (truth && rec.ground_truth.empty())
+    throw io::InputError(a.in.string(), "", "--odometry truth: recording has no ground_truth.csv");
+  if (!truth && rec.encoders.empty())
+    throw io::InputError(a.in.string(), "", "recording has no encoders.csv (try --odometry truth)");
   auto tracker = io::make_tracker(a.tracker, a.track_config);
   auto pipeline = io::make_pipeline(a.detector, a.detect_config, recording_mount(rec, a.in));
-  const OdometrySource odometry = ground_truth_odometry(rec);
+  std::string source = "recorded ground truth";
+  std::optional<LocalizerReplay> replay;
+  if (!truth) replay.emplace(rec, localizer_config(a, rec, source));
+  std::cout << "odometry: " << (truth ? source : "Localizer, " + source) << "\n";
+  const double period = sweep_period(rec);
+  const OdometrySource truth_odom = ground_truth_odometry(rec);
+  const OdometrySource odometry = [&](double t) -> std::optional<core::Pose2> {
+    if (!replay) return truth_odom(t);
+    replay->feed_until(t + period);
+    return replay->localizer().T_odom_base(t);
+  };
   PartialFile partial{fs::path(a.out.string() + ".partial")};
   std::ofstream out(partial.path);
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
@@ -153,7 +228,14 @@ void run(const TrackArgs& a) {
     if (!T) return void(++skipped);  // no odometry at that stamp: the tracker cannot use it
     record(tracker->update(obs, *T), rec.ground_truth, out, st);
   };
-  for (std::size_t i = 0; i < rec.cloud_count(); ++i) frame(pipeline.process(rec.cloud(i)));
+  for (std::size_t i = 0; i < rec.cloud_count(); ++i) {
+    const core::PointCloud cloud = rec.cloud(i);
+    // Levelled with the accelerometer's gravity over the sweep (localize/gravity_up.hpp).
+    const double v = replay ? replay->localizer().latest().twist.v : 0.0;
+    if (replay) replay->feed_until(cloud.stamp + period);
+    const auto up = localize::gravity_up(rec.imu, cloud.stamp, cloud.stamp + period, v);
+    frame(up ? pipeline.process(cloud, *up) : pipeline.process(cloud));
+  }
   for (const auto& scan : rec.scans) frame(pipeline.process(scan));
   out.close();
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
@@ -188,7 +270,9 @@ void add_track_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand(
       "track",
       "Track crop rows over a recording: a row detector on every LiDAR frame, then a row tracker "
-      "with the recording's odometry (for now its ground-truth poses). Output CSV: stamp [s], "
+      "with the odometry of a wheel + IMU (+ GNSS) Localizer fed with the recording's samples "
+      "(--odometry truth: its ground-truth poses); 3D sweeps are levelled with the "
+      "accelerometer's gravity. Output CSV: stamp [s], "
       "status (tracking | coasting | lost), confidence [0-1], lateral [m] (offset of the robot "
       "from the corridor centre, left +), heading_deg (robot minus corridor), spacing [m], and "
       "from the ground truth (in lanes): true_lateral, true_heading_deg, lateral_error, "
@@ -208,6 +292,14 @@ void add_track_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   c->add_option("--track-config", a->track_config,
                 "tracking config YAML, e.g. config/track/default.yaml (default: built-in)")
+      ->check(CLI::ExistingFile);
+  c->add_option("--odometry", a->odometry,
+                "odometry source: localizer (default: encoders + IMU + GNSS) or truth (the "
+                "recorded true poses, for analysis)")
+      ->check(CLI::IsMember({"localizer", "truth"}));
+  c->add_option("--localize-config", a->localize_config,
+                "Localizer config YAML (default: the nominal kinematics of the robot in the "
+                "recording's manifest, else the built-in defaults)")
       ->check(CLI::ExistingFile);
   c->callback([a] { run(*a); });
 }

@@ -21,13 +21,31 @@ DetectionPipeline::DetectionPipeline(preprocess::PreprocessConfig config,
 }
 
 core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_lidar) {
+  return transform_and_detect(cloud_lidar, T_base_lidar_);
+}
+
+core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_lidar,
+                                                const Eigen::Vector3d& up_base) {
+  const double norm = up_base.norm();
+  const double max_tilt = 30.0 * 3.14159265358979323846 / 180.0;  // [rad] beyond: bad input
+  if (!up_base.allFinite() || norm <= 0.0 || up_base.z() / norm < std::cos(max_tilt))
+    return transform_and_detect(cloud_lidar, T_base_lidar_);
+  // R rotates the measured up onto +z about the base origin (no yaw change).
+  Eigen::Isometry3d level = Eigen::Isometry3d::Identity();
+  level.linear() =
+      Eigen::Quaterniond::FromTwoVectors(up_base / norm, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return transform_and_detect(cloud_lidar, level * T_base_lidar_);
+}
+
+core::RowObservation DetectionPipeline::transform_and_detect(const core::PointCloud& cloud_lidar,
+                                                             const Eigen::Isometry3d& T_base_lidar) {
   cloud_base_.stamp = cloud_lidar.stamp;
   cloud_base_.frame_id = "base";
   cloud_base_.has_intensity = cloud_lidar.has_intensity;
   cloud_base_.has_ring = cloud_lidar.has_ring;
   cloud_base_.has_time = cloud_lidar.has_time;
   cloud_base_.points.resize(cloud_lidar.points.size());
-  const Eigen::Isometry3f T = T_base_lidar_.cast<float>();
+  const Eigen::Isometry3f T = T_base_lidar.cast<float>();
   for (std::size_t i = 0; i < cloud_lidar.points.size(); ++i) {
     auto q = cloud_lidar.points[i];
     const Eigen::Vector3f p = T * Eigen::Vector3f(q.x, q.y, q.z);  // NaN stays NaN: dropped later

@@ -1,9 +1,11 @@
 // Nehme 2021 sec. 3.3: initialisation (eq. (4)), zone-rule data association, regularised
-// regression (eq. (9)).
+// regression (eq. (9)). rownav additions: a heading gate on the association and a
+// re-initialisation when good frames keep contradicting the models (after a headland turn).
 #include "rownav/track/model_matching.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace rownav::track {
 
@@ -39,6 +41,8 @@ void ModelMatchingConfig::validate() const {
   core::check_positive(model_timeout, "model_timeout");
   core::check_range(min_follow_support, 1, 100000, "min_follow_support");
   core::check_range(max_models, 2, 1000, "max_models");
+  core::check_range(max_assign_heading_deg, 0.1, 90.0, "max_assign_heading_deg");
+  core::check_range(reinit_after, 1, 1000, "reinit_after");
   core::validate_nested(common, "common");
 }
 
@@ -95,47 +99,82 @@ double ModelMatchingTracker::median_spacing(double x_robot) const {
   return std::max(median(std::move(d)), 0.25 * fallback);
 }
 
-bool ModelMatchingTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
-  stamp_ = obs.stamp;
-  const bool init = models_.empty();
-  if (init) T_model_base_ = core::Pose2();
-  const double s = median_spacing(T_model_base_.x);
-  std::vector<bool> touched(models_.size(), false);
-  bool assigned = false;
+ModelMatchingTracker::Centre ModelMatchingTracker::to_model(const core::RowLine& r, double& xa,
+                                                            double& xb) const {
+  const Eigen::Vector2d p = T_model_base_ * centre_of(r);
+  const double heading = r.line.heading() + T_model_base_.theta;
+  xa = (T_model_base_ * Eigen::Vector2d(r.x_min, r.line.y_at(r.x_min))).x();
+  xb = (T_model_base_ * Eigen::Vector2d(r.x_max, r.line.y_at(r.x_max))).x();
+  if (xa > xb) std::swap(xa, xb);
+  return {p.x(), p.y(), std::tan(core::wrap_angle(heading))};
+}
+
+void ModelMatchingTracker::initialise(const core::RowObservation& obs) {
+  models_.clear();
+  contradictions_ = 0;
+  T_model_base_ = core::Pose2();  // the model frame: the base at the first observation
   for (const auto& r : obs.rows) {
     if (!finite_row(r)) continue;
-    const Eigen::Vector2d p = T_model_base_ * centre_of(r);
-    const double heading = r.line.heading() + T_model_base_.theta;
-    const Centre c{p.x(), p.y(), std::tan(core::wrap_angle(heading))};
-    const double xa = (T_model_base_ * Eigen::Vector2d(r.x_min, r.line.y_at(r.x_min))).x();
-    const double xb = (T_model_base_ * Eigen::Vector2d(r.x_max, r.line.y_at(r.x_max))).x();
-    if (init) {
-      add_model(c, obs.stamp, true, std::min(xa, xb), std::max(xa, xb));
-      continue;
-    }
-    std::size_t best = 0;
-    double d_best = 1e300;
-    for (std::size_t j = 0; j < models_.size(); ++j) {
-      const Model& m = models_[j];
-      const double d = std::abs(m.w1 * c.x + m.w0 - c.y) / std::sqrt(1.0 + m.w1 * m.w1);
-      if (d < d_best) d_best = d, best = j;
-    }
-    if (best < touched.size() && d_best < config_.assign_zone * s) {  // assign
-      Model& m = models_[best];
-      m.buffer.push_back(c);
-      while (static_cast<int>(m.buffer.size()) > config_.buffer_size) m.buffer.pop_front();
-      m.last_seen = obs.stamp, ++m.support, touched[best] = true, assigned = true;
-      m.x_min = std::min(m.x_min, std::min(xa, xb)), m.x_max = std::max(m.x_max, std::max(xa, xb));
-    } else if (d_best > config_.reject_zone * s &&
-               static_cast<int>(models_.size()) < config_.max_models) {  // new model
-      add_model(c, obs.stamp, false, std::min(xa, xb), std::max(xa, xb));
-    }  // else: outlier, rejected
+    double xa = 0.0, xb = 0.0;
+    add_model(to_model(r, xa, xb), obs.stamp, true, xa, xb);
+  }
+}
+
+bool ModelMatchingTracker::associate(const core::RowLine& r, double s, double stamp,
+                                     std::vector<bool>& touched) {
+  double xa = 0.0, xb = 0.0;
+  const Centre c = to_model(r, xa, xb);
+  const double max_dh = config_.max_assign_heading_deg * std::numbers::pi / 180.0;
+  std::size_t best = models_.size();
+  double d_best = 1e300;
+  for (std::size_t j = 0; j < models_.size(); ++j) {
+    const Model& m = models_[j];
+    const double d = std::abs(m.w1 * c.x + m.w0 - c.y) / std::sqrt(1.0 + m.w1 * m.w1);
+    if (d < d_best) d_best = d, best = j;
+  }
+  const bool aligned = best < models_.size() &&
+                       std::abs(std::atan(models_[best].w1) - std::atan(c.tan_gamma)) < max_dh;
+  if (aligned && d_best < config_.assign_zone * s) {  // assign
+    Model& m = models_[best];
+    m.buffer.push_back(c);
+    while (static_cast<int>(m.buffer.size()) > config_.buffer_size) m.buffer.pop_front();
+    m.last_seen = stamp, ++m.support, touched[best] = true;
+    m.x_min = std::min(m.x_min, xa), m.x_max = std::max(m.x_max, xb);
+    return true;
+  }
+  if ((!aligned || d_best > config_.reject_zone * s) &&
+      static_cast<int>(models_.size()) < config_.max_models)  // new model
+    add_model(c, stamp, false, xa, xb);
+  return false;  // new model, or an outlier (rejected)
+}
+
+bool ModelMatchingTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
+  stamp_ = obs.stamp;
+  if (models_.empty()) {
+    initialise(obs);
+    return !models_.empty();
+  }
+  const double s = median_spacing(T_model_base_.x);
+  std::vector<bool> touched(models_.size(), false);
+  bool assigned = false, sides_matched = true;
+  for (std::size_t i = 0; i < obs.rows.size(); ++i) {
+    if (!finite_row(obs.rows[i])) continue;
+    const bool a = associate(obs.rows[i], s, obs.stamp, touched);
+    assigned = assigned || a;
+    if (!a && (static_cast<int>(i) == obs.left || static_cast<int>(i) == obs.right))
+      sides_matched = false;
+  }
+  const bool good = obs.status == core::DetectionStatus::ok && obs.left >= 0 && obs.right >= 0;
+  contradictions_ = good && !sides_matched ? contradictions_ + 1 : 0;
+  if (contradictions_ >= config_.reinit_after) {  // latched onto wrong models: start again
+    initialise(obs);
+    return !models_.empty();
   }
   for (std::size_t j = 0; j < touched.size(); ++j)
     if (touched[j]) fit(models_[j]);
   std::erase_if(models_,
                 [&](const Model& m) { return obs.stamp - m.last_seen > config_.model_timeout; });
-  return init ? !models_.empty() : assigned;
+  return assigned;
 }
 
 void ModelMatchingTracker::describe(RowTracking& out) const {

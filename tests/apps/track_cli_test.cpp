@@ -32,7 +32,16 @@ TEST(TrackCli, TracksARecordingAndScoresItAgainstTheTruth) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("line_ekf on hough_skew"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("lateral RMSE"), std::string::npos) << r.out;
-  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  // The Localizer on the recorded encoders + IMU, configured from the manifest's robot.
+  EXPECT_EQ(r.out.rfind("odometry: Localizer, nominal kinematics of the manifest's robot\n", 0),
+            0u)
+      << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 2) << r.out;
+  const Result t = rownav(dir.path(),
+                          "track --in rec --detector hough_skew --tracker line_ekf --out u.csv "
+                          "--odometry truth");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(t.out.rfind("odometry: recorded ground truth\n", 0), 0u) << t.out;
   const std::string csv = read_file(dir / "t.csv");
   EXPECT_EQ(csv.rfind("stamp,status,confidence,lateral,heading_deg,spacing,true_lateral", 0), 0u);
   EXPECT_NE(csv.find(",tracking,"), std::string::npos);

@@ -26,6 +26,13 @@ class DetectionPipeline {
 
   /// A 3D sweep in the LiDAR frame. Never throws.
   core::RowObservation process(const core::PointCloud& cloud_lidar);
+  /// A 3D sweep levelled first: `up_base` is the gravity "up" direction in the base frame (from
+  /// the accelerometer, see localize/gravity_attitude.hpp). The base frame tilts with the
+  /// terrain, so a vertical row seen at height h appears shifted sideways by h sin(roll): at
+  /// 3 deg of roll, 5 cm for a 1 m canopy. The cloud is rotated about the base origin (on the
+  /// ground) so that up_base becomes +z, and the rows are found where they meet the ground.
+  /// A non-finite, zero or > 30 deg tilted up_base is ignored (not levelled). Never throws.
+  core::RowObservation process(const core::PointCloud& cloud_lidar, const Eigen::Vector3d& up_base);
   /// A planar scan in the LiDAR frame; the mount is applied in the plane (x, y, yaw). Never
   /// throws.
   core::RowObservation process(const core::Scan2D& scan_lidar);
@@ -42,6 +49,8 @@ class DetectionPipeline {
 
  private:
   core::RowObservation detect(double stamp);
+  core::RowObservation transform_and_detect(const core::PointCloud& cloud_lidar,
+                                            const Eigen::Isometry3d& T_base_lidar);
 
   preprocess::Preprocessor preprocessor_;
   std::unique_ptr<RowDetector> detector_;

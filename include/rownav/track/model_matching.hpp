@@ -25,6 +25,15 @@ struct ModelMatchingConfig {
   /// a weed seen once never becomes the followed row)
   int min_follow_support = 3;
   int max_models = 16;   ///< [-] at most this many models (rownav: bounds the per-frame cost)
+  /// [deg] a row centre is assigned to a model only if their headings differ less than this
+  /// (rownav: the zone rule measures the distance at the row centre only, so a row crossing a
+  /// model at a steep angle - a row seen during a headland turn - would otherwise be merged)
+  double max_assign_heading_deg = 15.0;
+  /// [-] consecutive frames with rows on both sides (status ok) whose left or right row matches
+  /// no model before every model is dropped and re-initialised from that frame (rownav: models
+  /// initialised from headland clutter or odd-angle rows, Nehme's eq. (4) on a bad first
+  /// observation, must not stay latched once the new corridor is in view)
+  int reinit_after = 3;
   TrackerConfig common;  ///< coasting, odometry plausibility, implement target
 
   template <class S, class V>
@@ -36,6 +45,8 @@ struct ModelMatchingConfig {
     v("model_timeout", s.model_timeout);
     v("min_follow_support", s.min_follow_support);
     v("max_models", s.max_models);
+    v("max_assign_heading_deg", s.max_assign_heading_deg);
+    v("reinit_after", s.reinit_after);
     v("common", s.common);
   }
   /// Throws std::invalid_argument naming the offending field.
@@ -52,7 +63,10 @@ class ModelMatchingTracker : public TrackerBase {
 
  protected:
   bool has_model() const override { return !models_.empty(); }
-  void clear_models() override { models_.clear(); }
+  void clear_models() override {
+    models_.clear();
+    contradictions_ = 0;
+  }
   void predict(const core::Pose2& T_prev_now, const core::Pose2& T_odom_base, double dt) override;
   bool correct(const core::RowObservation& obs, const core::Pose2& T_odom_base) override;
   void describe(RowTracking& out) const override;
@@ -75,6 +89,12 @@ class ModelMatchingTracker : public TrackerBase {
   void fit(Model& m) const;
   double median_spacing(double x_robot) const;
   void add_model(const Centre& c, double stamp, bool initial, double x_min, double x_max);
+  /// Row centre, heading tangent and x extent [xa, xb] of a detected row in the model frame.
+  Centre to_model(const core::RowLine& r, double& xa, double& xb) const;
+  /// Zone rule for one observed row (model frame); true when assigned to a model.
+  bool associate(const core::RowLine& r, double s, double stamp, std::vector<bool>& touched);
+  /// Nehme 2021 eq. (4) for every row of `obs`: the models of a (re)initialisation.
+  void initialise(const core::RowObservation& obs);
 
   ModelMatchingConfig config_;
   std::vector<Model> models_;
@@ -82,6 +102,7 @@ class ModelMatchingTracker : public TrackerBase {
   core::Pose2 T_model_base_;  // current base in the model frame
   double stamp_ = 0.0;
   int next_id_ = 0;
+  int contradictions_ = 0;  // consecutive good frames whose corridor rows matched no model
 };
 
 }  // namespace rownav::track
