@@ -145,7 +145,10 @@ void Navigator::remember_row_geometry(const NavInput& in) {
   const auto& t = in.tracking;
   if (t.status != track::TrackStatus::tracking) return;
   const core::Pose2& T = in.T_odom_base;
-  centre_odom_ = t.centre_line_base.transformed(T);
+  // Past the row ends only a short stub of row remains behind the robot (and headland clutter
+  // ahead): its line is no longer trusted, the exit keeps the last in-row centre line.
+  const bool past_end = centre_odom_ && end_arc_ && centre_odom_->arc(T.translation()) > *end_arc_;
+  if (!past_end) centre_odom_ = t.centre_line_base.transformed(T);
   if (t.row_spacing > 0.0) {  // running mean of the tracker's spacing (003 Table I row width)
     spacing_ = (spacing_ * spacing_n_ + t.row_spacing) / (spacing_n_ + 1);
     spacing_n_ = std::min(spacing_n_ + 1, 50);
