@@ -60,9 +60,33 @@ std::vector<std::pair<int, std::vector<const RunSample*>>> corridor_runs(const R
   return out;
 }
 
+/// Corridors driven end to end, in the order driven (ground truth): consecutive lane samples of
+/// one corridor, whatever the navigator's state, covering at least kServedCoverage of its
+/// centre line. A corridor left half-way (a false row end) is not served.
+constexpr double kServedCoverage = 0.95;
+std::vector<int> full_passes(const RunResult& run, const sim::FieldTruth& truth, int block) {
+  std::vector<int> out;
+  int k = -1;
+  double lo = 0.0, hi = 0.0, length = 0.0;
+  auto close = [&] {
+    if (k >= 0 && length > 0.0 &&
+        std::clamp(hi, 0.0, length) - std::clamp(lo, 0.0, length) >= kServedCoverage * length)
+      out.push_back(k);
+  };
+  for (const auto& s : run.samples) {
+    const int c = s.place == sim::Place::lane ? s.corridor : -1;
+    if (c != k) close(), k = c, lo = 1e300, hi = -1e300, length = 0.0;
+    if (k < 0) continue;
+    const auto p =
+        sim::project_on_polyline(truth.corridor_centre(block, k), s.T_world_base.translation());
+    lo = std::min(lo, p.along), hi = std::max(hi, p.along), length = p.length;
+  }
+  close();
+  return out;
+}
+
 void fill_corridors(const RunResult& run, const sim::FieldTruth& truth, int block, RunSummary& r) {
   Stats lat, head, ratio;
-  std::vector<int> served;
   for (const auto& [k, samples] : corridor_runs(run)) {
     CorridorMetrics c;
     c.corridor = k;
@@ -81,12 +105,13 @@ void fill_corridors(const RunResult& run, const sim::FieldTruth& truth, int bloc
     c.max_displacement = *cl.maxabs(), c.heading_rmse_deg = *ch.rms();
     ratio.add(c.path_length_ratio);
     r.per_corridor.push_back(c);
-    if (served.empty() || served.back() != k) served.push_back(k);
   }
   r.in_row_mean_displacement = lat.mean_abs(), r.in_row_max_displacement = lat.maxabs();
   r.in_row_lateral_rmse = lat.rms(), r.in_row_heading_rmse_deg = head.rms();
   r.path_length_ratio_mean = ratio.mean(), r.path_length_ratio_max = ratio.hi();
   r.path_length_ratio_min = ratio.lo();
+  const std::vector<int> served = full_passes(run, truth, block);
+  r.corridors_served = static_cast<int>(served.size());
   r.corridors_in_order = !served.empty() && served.size() <= run.order.size() &&
                          std::equal(served.begin(), served.end(), run.order.begin());
 }
@@ -138,7 +163,6 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
   r.safe_stop = run.final_state == navigate::NavState::safe_stop;
   r.stop_reason = std::string(core::enum_name(run.stop_reason));
   r.corridors_planned = static_cast<int>(run.order.size());
-  r.corridors_served = run.served;
   r.turns = run.turns;
   for (const auto& [planned, actual] : run.entries)
     (planned == actual ? r.correct_entries : r.wrong_entries)++;
@@ -163,7 +187,10 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
   }
   r.row_end_error_mean = ends.mean(), r.row_end_error_max = ends.hi();
   r.sim_time = run.sim_time, r.wall_time = run.wall_time;
-  r.success = r.mission_done && !r.collision && !r.safe_stop && r.wrong_entries == 0;
+  // Every planned corridor driven end to end in the planned order (the navigator's own count,
+  // run.served, could include a corridor left early on a false row end).
+  r.success = r.mission_done && !r.collision && !r.safe_stop && r.wrong_entries == 0 &&
+              r.corridors_served == r.corridors_planned && r.corridors_in_order;
   return r;
 }
 

@@ -45,14 +45,19 @@ BoxCount count_scan(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& 
   return n;
 }
 
-// The followed rows' extent: the smaller x_max of the followed rows, when tracked.
-std::optional<double> followed_extent(const track::RowTracking& t) {
+// The followed rows' extent: the nearest and the farthest x_max of the followed rows, when
+// tracked.
+struct Extent {
+  double nearest, farthest;
+};
+std::optional<Extent> followed_extent(const track::RowTracking& t) {
   if (t.status != track::TrackStatus::tracking) return std::nullopt;
-  std::optional<double> out;
+  std::optional<Extent> out;
   for (const int i : {t.left, t.right}) {
     if (i < 0 || i >= static_cast<int>(t.rows.size())) continue;
     const double x = t.rows[static_cast<std::size_t>(i)].x_max;
-    if (std::isfinite(x)) out = out ? std::min(*out, x) : x;
+    if (!std::isfinite(x)) continue;
+    out = out ? Extent{std::min(out->nearest, x), std::max(out->farthest, x)} : Extent{x, x};
   }
   return out;
 }
@@ -97,17 +102,22 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   r.count_jump = previous_count_ >= 0 && std::abs(r.box_points - previous_count_) > c.count_jump;
   previous_count_ = r.box_points;
   // 001 eq. (25) / sec. 4 (n < 30 on the left and right sides); 003 sec. II-C for planar scans.
-  const bool count_end = planar ? r.box_points < c.scan_point_threshold
-                                : n.left < c.point_threshold && n.right < c.point_threshold;
-  const std::optional<double> extent = followed_extent(tracking);
-  const bool extent_end = c.use_extent && extent && *extent < c.extent_distance;
+  // A sparse canopy (young shoots, 16 beams) can leave the box under the threshold mid-row: the
+  // count is overruled while both followed rows are tracked beyond the box (plants ahead).
+  const std::optional<Extent> extent = followed_extent(tracking);
+  const bool rows_continue = extent && extent->nearest > c.box_x_max;
+  const bool count_end =
+      !rows_continue && (planar ? r.box_points < c.scan_point_threshold
+                                : n.left < c.point_threshold && n.right < c.point_threshold);
+  // Extent cue: every followed row ends (a gap in one row ends that row's support only).
+  const bool extent_end = c.use_extent && extent && extent->farthest < c.extent_distance;
   r.frame_positive = count_end || extent_end;
   positives_ = r.frame_positive ? positives_ + 1 : 0;
   declared_ = declared_ || positives_ >= c.confirm_frames;
   r.end_detected = declared_;
   // Distance to the last plants: the tracked extent, else the last band point before the box.
   if (extent)
-    r.distance_to_end = *extent;
+    r.distance_to_end = extent->farthest;
   else if (count_end && n.x_last >= 0.0)
     r.distance_to_end = n.x_last;
   // Share of the confirmation window seen positive; 1 once declared.

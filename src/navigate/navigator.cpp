@@ -28,6 +28,7 @@ void NavigatorConfig::validate() const {
   core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
               "must be > entry_check_depth");
   core::check_range(entry_gate, 0.05, 1.0, "entry_gate");
+  core::check_positive(row_end_frames, "row_end_frames");
   core::check_positive(line_gain, "line_gain");
   core::check_positive(heading_gain, "heading_gain");
   core::validate_nested(turn, "turn");
@@ -125,24 +126,44 @@ bool Navigator::obstacle_ahead(const NavInput& in) const {
   return n >= config_.obstacle_min_points;
 }
 
+Eigen::Vector2d Navigator::recent_median(std::deque<Eigen::Vector2d>& recent,
+                                         const Eigen::Vector2d& p) const {
+  // The latest frames give the end relative to the robot with the least odometry drift; the
+  // median of a few of them drops single-frame outliers (a weed or post in the headland on the
+  // row's line stretches the support).
+  recent.push_back(p);
+  while (static_cast<int>(recent.size()) > config_.row_end_frames) recent.pop_front();
+  std::vector<std::pair<double, Eigen::Vector2d>> by_arc;
+  for (const auto& q : recent) by_arc.emplace_back(centre_odom_->arc(q), q);
+  const auto mid = by_arc.begin() + static_cast<std::ptrdiff_t>(by_arc.size() / 2);
+  std::nth_element(by_arc.begin(), mid, by_arc.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  return mid->second;
+}
+
 void Navigator::remember_row_geometry(const NavInput& in) {
   const auto& t = in.tracking;
   if (t.status != track::TrackStatus::tracking) return;
   const core::Pose2& T = in.T_odom_base;
-  centre_odom_ = t.centre_line_base.transformed(T);
+  // Past the row ends only a short stub of row remains behind the robot (and headland clutter
+  // ahead): its line is no longer trusted, the exit keeps the last in-row centre line.
+  const bool past_end = centre_odom_ && end_arc_ && centre_odom_->arc(T.translation()) > *end_arc_;
+  if (!past_end) centre_odom_ = t.centre_line_base.transformed(T);
   if (t.row_spacing > 0.0) {  // running mean of the tracker's spacing (003 Table I row width)
     spacing_ = (spacing_ * spacing_n_ + t.row_spacing) / (spacing_n_ + 1);
     spacing_n_ = std::min(spacing_n_ + 1, 50);
   }
   // Row ends: the far end of the followed rows' support, once it is in view (not range-cut).
+  // Only rows observed in this frame count: a coasting row keeps the extent of an older frame,
+  // in that frame's base, which would push the end forward by the distance driven since.
   auto end_of = [&](int i) -> std::optional<Eigen::Vector2d> {
     if (i < 0 || i >= static_cast<int>(t.rows.size())) return std::nullopt;
     const auto& r = t.rows[static_cast<std::size_t>(i)];
-    if (r.x_max > 7.0 || r.support < 3) return std::nullopt;
+    if (r.x_max > 7.0 || r.support < 3 || r.last_seen < in.observation.stamp) return std::nullopt;
     return T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
   };
-  if (auto e = end_of(t.left)) left_end_ = e;
-  if (auto e = end_of(t.right)) right_end_ = e;
+  if (auto e = end_of(t.left)) left_end_ = recent_median(left_ends_, *e);
+  if (auto e = end_of(t.right)) right_end_ = recent_median(right_ends_, *e);
   if (left_end_ || right_end_) {
     double arc = 0.0;
     int n = 0;

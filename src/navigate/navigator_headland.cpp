@@ -42,6 +42,8 @@ void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
   entry_seen_.reset();
   left_end_.reset();
   right_end_.reset();
+  left_ends_.clear();
+  right_ends_.clear();
   end_arc_.reset();
 }
 

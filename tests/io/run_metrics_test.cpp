@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+
+#include "rownav/sim/field_config.hpp"
+#include "rownav/sim/field_truth.hpp"
 
 namespace rownav::io {
 namespace {
@@ -16,6 +20,44 @@ TEST(RunMetrics, PathLengthRatioOfStraightRunIsOneAndOfSinusoidMore) {
   EXPECT_NEAR(*path_length_ratio(straight, ref), 1.0, 1e-9);
   EXPECT_GT(*path_length_ratio(wave, ref), 1.01);
   EXPECT_FALSE(path_length_ratio({{0, 0}, {0.5, 0}}, ref).has_value());
+}
+
+// A run along the centre of corridor `k` of `truth` from x0 to x1 (0.05 m steps), in_row.
+void drive(RunResult& run, const sim::FieldTruth& truth, int k, double x0, double x1) {
+  const double y = truth.corridor_centre(0, k).front().y();
+  const double step = x1 > x0 ? 0.05 : -0.05;
+  for (double x = x0; step > 0 ? x <= x1 : x >= x1; x += step) {
+    RunSample s;
+    s.T_world_base = core::Pose2(x, y, step > 0 ? 0.0 : std::numbers::pi);
+    const auto gt = truth.at(s.T_world_base, 0.0, 0.0);
+    s.place = gt.place, s.corridor = gt.corridor;
+    run.samples.push_back(s);
+  }
+}
+
+TEST(RunMetrics, ACorridorLeftHalfWayIsNotServed) {
+  sim::FieldConfig f;
+  f.vineyard.rows = 4, f.vineyard.row_length = 12.0, f.vineyard.row_spacing = 2.0;
+  const sim::Field field = sim::generate_field(f);
+  const sim::FieldTruth truth(field);
+  RunResult run;
+  run.order = {0, 1, 2};
+  run.served = 3;  // what the navigator claims
+  run.final_state = navigate::NavState::done;
+  drive(run, truth, 0, -1.5, 13.5);
+  drive(run, truth, 1, 13.5, -1.5);
+  drive(run, truth, 2, -1.5, 5.0);  // a false row end 5 m in
+  RunSummary s = summarize(run, truth);
+  EXPECT_EQ(s.corridors_served, 2);
+  EXPECT_TRUE(s.corridors_in_order);  // 0, 1 is a prefix of the plan
+  EXPECT_FALSE(s.success);
+  run.samples.clear();
+  drive(run, truth, 0, -1.5, 13.5);
+  drive(run, truth, 1, 13.5, -1.5);
+  drive(run, truth, 2, -1.5, 13.5);
+  s = summarize(run, truth);
+  EXPECT_EQ(s.corridors_served, 3);
+  EXPECT_TRUE(s.success);
 }
 
 }  // namespace

@@ -124,11 +124,43 @@ TEST(EndOfRow, TrackedExtentCue) {
   for (int k = 0; k < 3; ++k) r = d.update(vine_rows(20.0, false, k), {}, t);
   EXPECT_TRUE(r.end_detected);
   ASSERT_TRUE(r.distance_to_end.has_value());
-  EXPECT_DOUBLE_EQ(*r.distance_to_end, 2.5);
-  t.status = track::TrackStatus::lost;  // a lost tracker's extent is not trusted
+  EXPECT_DOUBLE_EQ(*r.distance_to_end, 2.7);  // past both rows' ends
+  t.status = track::TrackStatus::lost;        // a lost tracker's extent is not trusted
   EndOfRowDetector d2;
   for (int k = 0; k < 3; ++k) r = d2.update(vine_rows(20.0, false, k), {}, t);
   EXPECT_FALSE(r.end_detected);
+}
+
+// Two tracked rows with the given x_max (right, left).
+track::RowTracking tracked_rows(double right_x_max, double left_x_max) {
+  track::RowTracking t;
+  t.status = track::TrackStatus::tracking;
+  t.rows.resize(2);
+  t.right = 0, t.left = 1;
+  t.rows[0].x_max = right_x_max, t.rows[1].x_max = left_x_max;
+  return t;
+}
+
+TEST(EndOfRow, GapInOneRowIsNotTheEnd) {
+  // The left row's support stops at a 3-vine gap 1.5 m ahead; the right row goes on to 9 m.
+  EndOfRowDetector d;
+  EndOfRowResult r;
+  for (int k = 0; k < 10; ++k) r = d.update(vine_rows(20.0, false, k), {}, tracked_rows(9.0, 1.5));
+  EXPECT_FALSE(r.end_detected);
+}
+
+TEST(EndOfRow, SparseCanopyCountIsOverruledByRowsTrackedBeyondTheBox) {
+  // Young shoots: too few points in the box for the count cue, but both rows are tracked to 9 m.
+  core::PointCloud sparse = vine_rows(20.0, false, 3);
+  sparse.points.resize(sparse.points.size() / 20);
+  EndOfRowDetector d;
+  EndOfRowResult r;
+  for (int k = 0; k < 10; ++k) r = d.update(sparse, {}, tracked_rows(9.0, 8.5));
+  EXPECT_LT(r.left_points, d.config().point_threshold);  // the count alone would say "end"
+  EXPECT_FALSE(r.end_detected);
+  EndOfRowDetector d2;  // without tracking the count decides
+  for (int k = 0; k < 10; ++k) r = d2.update(sparse, {}, no_tracking());
+  EXPECT_TRUE(r.end_detected);
 }
 
 TEST(EndOfRow, BadConfigNamesTheField) {

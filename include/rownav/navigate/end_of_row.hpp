@@ -42,8 +42,8 @@ struct EndOfRowConfig {
   /// [points] planar scans (no cloud): fewer points than this in the whole box means the
   /// corridor is over (003 sec. II-C: "the number of points in the rectangle approaches zero")
   int scan_point_threshold = 3;
-  bool use_extent = true;        ///< also end when the followed rows' x_max < extent_distance
-  double extent_distance = 3.0;  ///< [m] followed rows ending closer than this: row end ahead
+  bool use_extent = true;        ///< also end when every followed row's x_max < extent_distance
+  double extent_distance = 3.0;  ///< [m] all followed rows ending closer than this: row end ahead
 
   template <class S, class V>
   static void fields(S& s, V& v) {
