@@ -3,11 +3,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <stdexcept>
 
 #include "rownav/control/velocity_limits.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/io/localize_setup.hpp"
+#include "rownav/localize/gravity_up.hpp"
 #include "rownav/sim/field_truth.hpp"
 
 namespace rownav::io {
@@ -47,7 +49,11 @@ class RunnerSink : public sim::SimSink {
     has_scan_ = true;
   }
   void on_encoders(const core::WheelEncoderSample& s) override { odom_.on_encoders(s); }
-  void on_imu(const core::ImuSample& s) override { odom_.on_imu(s); }
+  void on_imu(const core::ImuSample& s) override {
+    odom_.on_imu(s);
+    imu_.push_back(s);  // the last second, to level each sweep by gravity
+    while (!imu_.empty() && imu_.front().stamp < s.stamp - 1.0) imu_.pop_front();
+  }
   void on_gnss(const core::GnssFix& s) override { odom_.on_gnss(s); }
   void on_ground_truth(const sim::GroundTruth& g) override {
     RunSample s;
@@ -77,6 +83,7 @@ class RunnerSink : public sim::SimSink {
   std::vector<sim::Plant> posts_;
   core::PointCloud cloud_;
   core::Scan2D scan_;
+  std::deque<core::ImuSample> imu_;
   bool has_cloud_ = false, has_scan_ = false;
   navigate::NavState state = navigate::NavState::in_row;
   int planned = -1;
@@ -109,6 +116,20 @@ FrameSample score_frame(const track::RowTracking& t, const sim::GroundTruth& g, 
   compare(t.left, g.left_row);
   compare(t.right, g.right_row);
   return f;
+}
+
+/// One 3D sweep through the pipeline, levelled by the gravity the IMU measured during the sweep
+/// when the set-up asks for it (a rolling base shifts the rows sideways by h sin(roll)).
+core::RowObservation process_cloud(detect::DetectionPipeline& pipeline, const RunnerSink& sink,
+                                   double speed, const ClosedLoopSetup& setup) {
+  if (setup.level_by_gravity) {
+    const std::vector<core::ImuSample> imu(sink.imu_.begin(), sink.imu_.end());
+    const double t0 = sink.cloud_.stamp;
+    const double t1 = t0 + 1.0 / setup.sensors.lidar.rate_hz;
+    if (const auto up = localize::gravity_up(imu, t0, t1, speed))
+      return pipeline.process(sink.cloud_, *up);
+  }
+  return pipeline.process(sink.cloud_);
 }
 
 }  // namespace
@@ -190,8 +211,8 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
       const auto t0 = Clock::now();
       const bool was_in_row = nav.state() == navigate::NavState::in_row;
       navigate::NavInput in;
-      in.observation =
-          sink.has_cloud_ ? pipeline.process(sink.cloud_) : pipeline.process(sink.scan_);
+      in.observation = sink.has_cloud_ ? process_cloud(pipeline, sink, odom->twist().v, setup)
+                                       : pipeline.process(sink.scan_);
       sink.has_cloud_ = sink.has_scan_ = false;
       in.stamp = sim.time();
       in.T_odom_base = T;

@@ -69,6 +69,9 @@ struct ClosedLoopSetup {
   TrackerFactory make_tracker;
   ControllerFactory make_controller;
   OdometryFactory make_odometry;  ///< empty: LocalizerOdometry(localizer_config_for(robot, sensors))
+  /// Level each 3D sweep by the gravity the IMU measured during it before detection (the base
+  /// rolls with the terrain; localize/gravity_up.hpp).
+  bool level_by_gravity = true;
   double time_limit = 1200.0;     ///< [s] simulated; the run stops with reason `timeout`
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
