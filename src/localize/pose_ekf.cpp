@@ -106,7 +106,8 @@ bool PoseEkf::predict_to(double stamp) {
 
 template <int M>
 void PoseEkf::correct(const Eigen::Matrix<double, M, 1>& y, const Eigen::Matrix<double, M, 6>& H,
-                      const Eigen::Matrix<double, M, M>& R, bool update_pose) {
+                      const Eigen::Matrix<double, M, M>& R, bool update_pose,
+                      bool update_bias) {
   const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + R;
   Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S.inverse();
   // Velocity measurements (wheels, gyro) correct the velocity and bias states only: through
@@ -115,6 +116,7 @@ void PoseEkf::correct(const Eigen::Matrix<double, M, 1>& y, const Eigen::Matrix<
   // integral of the estimated velocities (a Schmidt / consider update; the Joseph form below
   // is valid for any gain).
   if (!update_pose) K.template topRows<3>().setZero();
+  if (!update_bias) K.row(kB).setZero();
   x_ += K * y;
   x_(kTh) = core::wrap_angle(x_(kTh));
   // Joseph form keeps P symmetric positive semi-definite.
@@ -138,7 +140,10 @@ bool PoseEkf::update_odometry(double stamp, const core::Twist2& t, bool stationa
                         ? config_.stationary_std
                         : config_.odom_omega_std + config_.odom_omega_rel_std * std::abs(t.omega);
   const Eigen::Vector2d y(t.v - x_(kV), t.omega - x_(kW));
-  correct<2>(y, H, Eigen::Vector2d(sq(sv), sq(sw)).asDiagonal().toDenseMatrix(), false);
+  // A moving robot's wheel yaw rate carries the skid-steer ICR scale error (tens of percent):
+  // it must not teach the gyro bias; a standing robot's zero twist is exact and does (rownav).
+  correct<2>(y, H, Eigen::Vector2d(sq(sv), sq(sw)).asDiagonal().toDenseMatrix(), false,
+             stationary);
   return true;
 }
 
@@ -154,7 +159,7 @@ bool PoseEkf::update_gyro(double stamp, double yaw_rate) {
   Eigen::Matrix<double, 1, 1> y, R;
   y(0) = yaw_rate - (x_(kW) + x_(kB));
   R(0) = sq(config_.gyro_std);
-  correct<1>(y, H, R, false);
+  correct<1>(y, H, R, false, true);
   return true;
 }
 
@@ -175,7 +180,7 @@ bool PoseEkf::update_position(double stamp, const Eigen::Vector2d& p, double std
     ++rejected_outliers_;
     return false;
   }
-  correct<2>(y, H, R, true);
+  correct<2>(y, H, R, true, true);
   return true;
 }
 

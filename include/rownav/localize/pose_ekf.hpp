@@ -107,7 +107,7 @@ class PoseEkf {
   void predict(double dt);
   template <int M>
   void correct(const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, 6>& H,
-               const Eigen::Matrix<double, M, M>& R, bool update_pose);
+               const Eigen::Matrix<double, M, M>& R, bool update_pose, bool update_bias);
 
   PoseEkfConfig config_;
   State x_ = State::Zero();
