@@ -29,9 +29,10 @@ void add_demo_command(CLI::App& app) {
     a.sensor = d / "sensors/os1_16.yaml";
     a.mission = d / "missions/serve_all.yaml";
     a.detect_config = d / "detect/vineyard.yaml";
+    a.nav_config = d / "navigate/vineyard.yaml";
     a.out = *out;
     a.quiet = *quiet;
-    for (const auto& f : {a.field, a.robot, *a.sensor, a.mission, *a.detect_config})
+    for (const auto& f : {a.field, a.robot, *a.sensor, a.mission, *a.detect_config, *a.nav_config})
       if (!std::filesystem::exists(f))
         throw io::InputError(f.string(), "",
                              "not found (run from the repository or pass --config-dir)");

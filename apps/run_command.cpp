@@ -15,6 +15,7 @@
 #include "rownav/io/run_metrics.hpp"
 #include "rownav/io/run_report.hpp"
 #include "rownav/io/yaml_config.hpp"
+#include "rownav/navigate/nav_stack_config.hpp"
 #include "run_mission.hpp"
 #include "setup.hpp"
 
@@ -36,17 +37,29 @@ void make_stack(const RunArgs& a, io::ClosedLoopSetup& s) {
   };
 }
 
-// The detection config: --detect-config, else the crop's shipped one (config/detect/<kind>.yaml
-// under --config-dir, as a user running from the repository expects), else every default.
-std::filesystem::path detect_config_for(const RunArgs& a, const sim::FieldConfig& field) {
-  if (a.detect_config) return *a.detect_config;
+// A crop's shipped config: `given` (--detect-config / --nav-config), else
+// <config-dir>/<folder>/<kind>.yaml (as a user running from the repository expects), else every
+// default (empty path).
+std::filesystem::path crop_config_for(const RunArgs& a, const sim::FieldConfig& field,
+                                      const std::optional<std::filesystem::path>& given,
+                                      const char* folder, const char* option) {
+  if (given) return *given;
   const sim::FieldKind kind =
       field.kind == sim::FieldKind::layout ? sim::FieldKind::vineyard : field.kind;
-  const auto crop = a.config_dir / "detect" / (std::string(core::enum_name(kind)) + ".yaml");
+  const auto crop = a.config_dir / folder / (std::string(core::enum_name(kind)) + ".yaml");
   if (std::filesystem::exists(crop)) return crop;
   if (!a.quiet)
-    std::cerr << "rownav run: no " << crop.string() << ": detector defaults (pass --detect-config)\n";
+    std::cerr << "rownav run: no " << crop.string() << ": defaults (pass " << option << ")\n";
   return {};
+}
+
+// Navigator and end-of-row detector settings (navigate::NavStackConfig), strictly loaded.
+void load_nav_stack(const RunArgs& a, const sim::FieldConfig& field, io::ClosedLoopSetup& s) {
+  const auto file = crop_config_for(a, field, a.nav_config, "navigate", "--nav-config");
+  if (file.empty()) return;
+  const auto stack = io::load_config<navigate::NavStackConfig>(file);
+  s.navigator = stack.navigator;
+  s.end_of_row = stack.end_of_row;
 }
 
 void print_summary(const io::RunSummary& s, const RunArgs& a) {
@@ -84,10 +97,11 @@ bool run_mission(const RunArgs& a) {
   s.sensors = load_sensors(a.sensor, "");
   s.sensors.seed = a.seed;
   s.mission = io::load_mission(a.mission);
-  if (a.nav_config) s.navigator = io::load_config<navigate::NavigatorConfig>(*a.nav_config);
+  load_nav_stack(a, field_config, s);
   if (a.row_end_policy) s.navigator.row_ends.policy = *a.row_end_policy;
   s.detector = a.detector;
-  s.detect_config = detect_config_for(a, field_config);
+  s.detect_config =
+      crop_config_for(a, field_config, a.detect_config, "detect", "--detect-config");
   s.time_limit = a.time_limit;
   make_stack(a, s);
   std::optional<io::Progress> bar;
@@ -137,11 +151,13 @@ void add_run_command(CLI::App& app) {
   c->add_option("--track-config", a->track_config, "tracker config YAML")->check(CLI::ExistingFile);
   c->add_option("--control-config", a->control_config, "controller config YAML")
       ->check(CLI::ExistingFile);
-  c->add_option("--nav-config", a->nav_config, "navigator config YAML (navigate::NavigatorConfig)")
+  c->add_option("--nav-config", a->nav_config,
+                "navigation config YAML: navigator: and end_of_row: sections "
+                "(navigate::NavStackConfig); default config/navigate/<crop>.yaml")
       ->check(CLI::ExistingFile);
   c->add_option("--config-dir", a->config_dir,
-                 "where config/detect/<crop>.yaml is looked up when --detect-config is not given "
-                 "(default config)");
+                "where config/detect/<crop>.yaml and config/navigate/<crop>.yaml are looked up "
+                "when --detect-config / --nav-config are not given (default config)");
   c->add_option("--row-end-policy", a->row_end_policy,
                 "row-end poles policy in the headland: nearest, line_fitting (default)")
       ->transform(CLI::CheckedTransformer(

@@ -12,7 +12,8 @@ namespace rownav::app {
 /// Options of a closed-loop run (file paths as given on the command line).
 struct RunArgs {
   std::filesystem::path field, robot, mission, out;
-  std::filesystem::path config_dir = "config";  ///< config/detect/<crop>.yaml lives here
+  /// config/detect/<crop>.yaml and config/navigate/<crop>.yaml live here
+  std::filesystem::path config_dir = "config";
   std::optional<std::filesystem::path> sensor, detect_config, track_config, control_config,
       nav_config;
   std::string detector = "hough_skew";

@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kArcStep = 0.1;  // [m] path sampling
+constexpr double kRadiusMargin = 1.25;  // [-] turn radius / min turn radius (car-like robots)
 
 /// Points of an arc around c from a to b (same radius), counter-clockwise when ccw.
 std::vector<Eigen::Vector2d> arc(const Eigen::Vector2d& c, const Eigen::Vector2d& a,
@@ -85,19 +86,22 @@ void ManoeuvreConfig::validate() const {
 
 int min_feasible_shift(double spacing, double min_turn_radius) {
   if (!(spacing > 0.0) || !(min_turn_radius > 0.0)) return 1;
-  return std::max(1, static_cast<int>(std::ceil(2.0 * min_turn_radius / spacing - 1e-9)));
+  return std::max(1, static_cast<int>(
+                        std::ceil(2.0 * kRadiusMargin * min_turn_radius / spacing - 1e-9)));
 }
 
 TurnPlan choose_turn(ManoeuvreChoice choice, int shift, double spacing, const TurnAbility& robot) {
   const double lateral = std::max(1, shift) * spacing;
   const bool in_place_ok = robot.can_turn_in_place;
   if ((choice == ManoeuvreChoice::automatic || choice == ManoeuvreChoice::in_place) && in_place_ok)
-    return {TurnKind::in_place, 0.0};
+    return {TurnKind::in_place, 0.0, true};
   // Lan 2021 (001 sec. 3.3): fixed radius = spacing / 2; never below the robot's minimum.
-  const double r = std::max(spacing / 2.0, robot.min_turn_radius);
+  // A car-like robot gets kRadiusMargin x its minimum: its steering takes ~1 s to swing from
+  // lock to lock between the arcs, and it needs curvature to spare to come back onto the path.
+  const double r = std::max(spacing / 2.0, kRadiusMargin * robot.min_turn_radius);
   if (choice != ManoeuvreChoice::three_point && lateral >= 2.0 * r - 1e-9)
-    return {TurnKind::u_turn, r};
-  return {TurnKind::bulb, std::max(robot.min_turn_radius, spacing / 2.0)};
+    return {TurnKind::u_turn, r, in_place_ok};
+  return {TurnKind::bulb, r, in_place_ok};
 }
 
 HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPlan& plan,
@@ -185,8 +189,11 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
   // Row ends near the row-end line, merged over the frames (odometry keeps them put).
   for (const auto& q : ends_turn) {
     if (!q.allFinite() || std::abs(q.x()) > config_.pole_band) continue;
+    // One row end per anchor gate: a canopy seen from the headland gives end estimates spread
+    // across its width (crowns, a vine's foliage); two rows are a spacing apart.
+    const double merge = config_.anchor_gate * spacing_;
     auto it = std::find_if(poles_.begin(), poles_.end(),
-                           [&](const Pole& p) { return (p.y - q.y()) * (p.y - q.y()) < 0.16; });
+                           [&](const Pole& p) { return std::abs(p.y - q.y()) < merge; });
     if (it == poles_.end()) {
       poles_.push_back({q.y(), 1});
     } else {
@@ -231,13 +238,23 @@ core::Twist2 HeadlandManoeuvre::follow(Primitive& p, const core::Pose2& T_turn_b
     cursor_ = 0;
     return {};
   }
+  // Look-ahead grown by the distance off the path: a robot pushed off a tight arc (a car-like
+  // robot lags its steering) still aims at a point ahead along the path, not abeam.
+  const double lookahead = config_.lookahead + (point(cursor_) - q).norm();
   std::size_t j = cursor_;
-  while (j < last && (point(j) - q).norm() < config_.lookahead) ++j;
+  while (j < last && (point(j) - q).norm() < lookahead) ++j;
   const Eigen::Vector2d t = T_turn_base.inverse() * point(j);
-  if (t.x() < 0.0 && t.norm() > 0.1)
-    return {0.0, 0.0, (t.y() >= 0 ? 1.0 : -1.0) * config_.rotate_rate};
+  // Pure pursuit: the arc tangent to the heading through the look-ahead point.
+  const double curvature = 2.0 * t.y() / std::max(t.squaredNorm(), 1e-6);
+  if (t.x() < 0.0 && t.norm() > 0.1) {
+    if (plan_.can_rotate) return {0.0, 0.0, (t.y() >= 0 ? 1.0 : -1.0) * config_.rotate_rate};
+    // A car-like robot cannot rotate in place (a zero-speed yaw command leaves it standing for
+    // ever): it backs up along the same arc until the point is ahead again (three-point turn).
+    const double v = -config_.turn_speed;
+    return {v, 0.0, v * curvature};
+  }
   const double v = config_.turn_speed;
-  return {v, 0.0, v * 2.0 * t.y() / std::max(t.squaredNorm(), 1e-6)};  // pure pursuit curvature
+  return {v, 0.0, v * curvature};
 }
 
 ManoeuvreStep HeadlandManoeuvre::step(const core::Pose2& T_odom_base,

@@ -9,6 +9,7 @@
 #include "rownav/io/field_builder.hpp"
 #include "rownav/io/sim_setup.hpp"
 #include "rownav/io/yaml_config.hpp"
+#include "rownav/navigate/nav_stack_config.hpp"
 #include "rownav/sim/field_config.hpp"
 #include "rownav/sim/robot.hpp"
 #include "rownav/sim/scripted_path.hpp"
@@ -29,6 +30,23 @@ TEST(ConfigFiles, RobotsLoadStrictly) {
   const auto files = yaml_files("robots");
   ASSERT_GE(files.size(), 4u);
   for (const auto& f : files) EXPECT_NO_THROW(load_config<sim::RobotConfig>(f)) << f;
+}
+
+TEST(ConfigFiles, NavigateLoadStrictlyAndVineyardIsTheDefaults) {
+  const auto files = yaml_files("navigate");
+  ASSERT_EQ(files.size(), 3u);  // vineyard, orchard, row_crop
+  for (const auto& f : files) EXPECT_NO_THROW(load_config<navigate::NavStackConfig>(f)) << f;
+  const fs::path dir = fs::path(ROWNAV_SOURCE_DIR) / "config/navigate";
+  // The demo runs on vineyard.yaml: it must be exactly the built-in defaults.
+  YAML::Emitter vineyard, defaults;
+  vineyard << encode_config(load_config<navigate::NavStackConfig>(dir / "vineyard.yaml"));
+  defaults << encode_config(navigate::NavStackConfig{});
+  EXPECT_EQ(std::string(vineyard.c_str()), std::string(defaults.c_str()));
+  // The crops differ where their canopy does (001 eq. 24's band suits vines only).
+  const auto orchard = load_config<navigate::NavStackConfig>(dir / "orchard.yaml");
+  const auto maize = load_config<navigate::NavStackConfig>(dir / "row_crop.yaml");
+  EXPECT_GT(orchard.end_of_row.band_z_min, navigate::EndOfRowConfig{}.band_z_min);
+  EXPECT_LT(maize.end_of_row.band_z_min, navigate::EndOfRowConfig{}.band_z_min);
 }
 
 TEST(ConfigFiles, PathsLoadStrictly) {

@@ -45,15 +45,19 @@ struct TurnAbility {
 struct TurnPlan {
   TurnKind kind = TurnKind::in_place;
   double radius = 0.0;  ///< [m] arcs (u_turn, bulb)
+  /// The robot can rotate in place; when not (car-like), it backs up along the pursuit arc when
+  /// the look-ahead point falls behind it (a three-point correction) instead of rotating.
+  bool can_rotate = true;
 };
 
 /// Turn for `shift` corridors across at `spacing` [m]: in_place for robots that can (automatic,
-/// in_place); u_turn with radius max(spacing / 2, r_min) when shift * spacing >= 2 r (Lan 2021:
-/// radius = spacing / 2); otherwise a bulb of radius r_min. Never throws.
+/// in_place); u_turn with radius r = max(spacing / 2, 1.25 r_min) when shift * spacing >= 2 r
+/// (Lan 2021: radius = spacing / 2; the 25 % margin lets a car-like robot whose steering lags
+/// come back onto the arc); otherwise a bulb of radius r. Never throws.
 TurnPlan choose_turn(ManoeuvreChoice choice, int shift, double spacing, const TurnAbility& robot);
 
-/// Smallest shift k (corridors) a U-turn of the robot's min radius can make at `spacing`:
-/// k * spacing >= 2 r_min (at least 1).
+/// Smallest shift k (corridors) a U-turn of the robot can make at `spacing`:
+/// k * spacing >= 2 * 1.25 r_min (choose_turn's radius margin; at least 1).
 int min_feasible_shift(double spacing, double min_turn_radius);
 
 /// Parameters of the headland manoeuvres.
