@@ -8,14 +8,12 @@
 
 namespace rownav::navigate {
 
-namespace {
-std::string fmt(double v) {
+std::string Navigator::fmt(double v) {  // event texts: centimetres are enough
   std::ostringstream s;
   s.precision(2);
   s << std::fixed << v;
   return s.str();
 }
-}  // namespace
 
 void NavigatorConfig::validate() const {
   core::check_positive(row_speed, "row_speed");

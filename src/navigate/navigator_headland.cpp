@@ -2,20 +2,10 @@
 // its place check (Malavazi 2018, 004 sec. 4: dead-reckoned turns often enter the wrong row).
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "rownav/navigate/navigator.hpp"
 
 namespace rownav::navigate {
-
-namespace {
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(2);
-  s << std::fixed << v;
-  return s.str();
-}
-}  // namespace
 
 void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
   const CorridorChange& change = changes_[leg_];

@@ -13,6 +13,8 @@
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/yaml_config.hpp"
 
+#include "common/registry_test_util.hpp"
+
 namespace rownav::io {
 namespace {
 
@@ -21,19 +23,10 @@ namespace fs = std::filesystem;
 const fs::path kDefault = fs::path(ROWNAV_SOURCE_DIR) / "config" / "control" / "default.yaml";
 
 fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("rownav_ctrl_registry_" + name + ".yaml");
-  std::ofstream(p) << text;
-  return p;
+  return test::write_temp_yaml("ctrl_registry", name, text);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test::input_error_of(f); }
 
 TEST(ControllerRegistry, EveryControllerFromDefaultsAndFromTheFile) {
   const auto names = controller_names();

@@ -8,25 +8,18 @@
 
 #include "rownav/io/input_error.hpp"
 
+#include "common/registry_test_util.hpp"
+
 namespace rownav::io {
 namespace {
 
 namespace fs = std::filesystem;
 
 fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("rownav_registry_" + name + ".yaml");
-  std::ofstream(p) << text;
-  return p;
+  return test::write_temp_yaml("registry", name, text);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test::input_error_of(f); }
 
 TEST(DetectorRegistry, KnowsTheBaseline) {
   const auto names = detector_names();

@@ -12,6 +12,8 @@
 #include "rownav/track/model_filter.hpp"
 #include "rownav/track/model_matching.hpp"
 
+#include "common/registry_test_util.hpp"
+
 namespace rownav::io {
 namespace {
 
@@ -20,19 +22,10 @@ namespace fs = std::filesystem;
 const fs::path kDefault = fs::path(ROWNAV_SOURCE_DIR) / "config" / "track" / "default.yaml";
 
 fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("rownav_track_registry_" + name + ".yaml");
-  std::ofstream(p) << text;
-  return p;
+  return test::write_temp_yaml("track_registry", name, text);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test::input_error_of(f); }
 
 TEST(TrackerRegistry, BuildsEveryTrackerFromDefaultsAndTheDefaultFile) {
   ASSERT_EQ(tracker_names().size(), 4u);  // model_matching, line_ekf, model_filter, none

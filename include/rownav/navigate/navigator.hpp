@@ -171,6 +171,7 @@ class Navigator {
   void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void remember_row_geometry(const NavInput& in);
+  static std::string fmt(double v);
   Eigen::Vector2d recent_median(std::deque<Eigen::Vector2d>& recent,
                                 const Eigen::Vector2d& p) const;
   void start_turn(const core::Pose2& T, NavOutput& out, double stamp);
