@@ -8,10 +8,6 @@
 
 namespace rownav::navigate {
 
-namespace {
-constexpr double kCentreBlend = 0.1;  // [-] per frame: a 10-frame memory at 10 Hz
-}  // namespace
-
 std::string Navigator::fmt(double v) {  // event texts: centimetres are enough
   std::ostringstream s;
   s.precision(2);
@@ -150,16 +146,7 @@ void Navigator::remember_row_geometry(const NavInput& in) {
   // Past the row ends only a short stub of row remains behind the robot (and headland clutter
   // ahead): its line is no longer trusted, the exit keeps the last in-row centre line.
   const bool past_end = centre_odom_ && end_arc_ && centre_odom_->arc(T.translation()) > *end_arc_;
-  if (!past_end) {
-    // The corridor direction in odom is averaged over the row (about 1 m of travel): near the
-    // row ends a frame sees end posts and headland clutter, and the turn frame built from a
-    // single late frame sent the headland leg diagonally into the rows (2D scanner runs).
-    const core::Line2 seen = t.centre_line_base.transformed(T);
-    Eigen::Vector2d d = seen.direction;
-    if (centre_odom_ && centre_odom_->direction.dot(d) > 0.9)
-      d = (1.0 - kCentreBlend) * centre_odom_->direction + kCentreBlend * d;
-    centre_odom_ = core::Line2(seen.point, d);
-  }
+  if (!past_end) centre_odom_ = t.centre_line_base.transformed(T);
   if (t.row_spacing > 0.0) {  // running mean of the tracker's spacing (003 Table I row width)
     spacing_ = (spacing_ * spacing_n_ + t.row_spacing) / (spacing_n_ + 1);
     spacing_n_ = std::min(spacing_n_ + 1, 50);
