@@ -1,4 +1,5 @@
 // The regression gate: metrics over all runs against bench/quick_baseline.json.
+#include "json_file.hpp"
 #include "rownav/io/bench_baseline.hpp"
 
 #include <cmath>
@@ -68,14 +69,7 @@ std::map<std::string, std::optional<double>> gate_metrics(const std::vector<RunR
 }
 
 Baseline read_baseline(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "", "cannot open");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(file.string(), "byte " + std::to_string(e.byte), "malformed JSON");
-  }
+  const json j = detail::read_json_file(file);
   if (!j.is_object() || !j.contains("metrics") || !j["metrics"].is_object())
     throw InputError(file.string(), "", "expected an object with \"metrics\": {...}");
   Baseline b;

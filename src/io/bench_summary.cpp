@@ -1,4 +1,5 @@
 // Reading summary.json files into RunSummary.
+#include "json_file.hpp"
 #include "rownav/io/bench_summary.hpp"
 
 #include <fstream>
@@ -30,14 +31,7 @@ std::optional<double> RunSummary::get(const std::string& key) const {
 }
 
 RunSummary read_summary(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "", "cannot open");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(file.string(), "byte " + std::to_string(e.byte), "malformed JSON");
-  }
+  const json j = detail::read_json_file(file);
   if (!j.is_object()) throw InputError(file.string(), "", "expected a JSON object");
   RunSummary s;
   read_numbers(j, s.numbers);
