@@ -1,7 +1,7 @@
 #pragma once
-// Test doubles for the navigation stack: a proportional heading + lateral controller (a
-// controller with no state, so navigator tests do not depend on the real controllers' tuning)
-// and the raw-corridor tracker under its old name.
+// Test double for the navigation stack: a proportional heading + lateral controller with no
+// state, so the navigator tests do not depend on the real controllers' tuning (they pair it
+// with the library's raw-corridor tracker, track/raw_corridor.hpp).
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -9,13 +9,9 @@
 
 #include "rownav/control/controller.hpp"
 #include "rownav/core/row_observation.hpp"
-#include "rownav/track/raw_corridor.hpp"
 #include "rownav/track/row_tracker.hpp"
 
 namespace rownav::test {
-
-/// The navigator tests follow the raw detector corridor (the library's `none` tracker).
-using PassThroughTracker = track::RawCorridorTracker;
 
 /// omega = -k_lat * lateral_error - k_head * heading_error, v = speed_ref (slower near obstacles).
 class ProportionalController : public control::PathController {

@@ -1,10 +1,11 @@
-// One small closed-loop mission in the simulator with the test doubles and the temporary
-// end-of-row / row-end stubs: 4 rows x 15 m vineyard, corridors 0, 1, 2.
+// One small closed-loop mission in the simulator with the raw-corridor tracker and the
+// proportional test controller: 4 rows x 15 m vineyard, corridors 0, 1, 2.
 #include "rownav/io/closed_loop_runner.hpp"
 
 #include <gtest/gtest.h>
 
 #include "common/nav_doubles.hpp"
+#include "rownav/track/raw_corridor.hpp"
 #include "rownav/io/field_builder.hpp"
 #include "rownav/io/run_metrics.hpp"
 
@@ -28,7 +29,7 @@ ClosedLoopSetup setup_for(const sim::Field& field) {
   s.field = &field;
   s.mission.corridors = {0, 1, 2};
   s.detect_config = std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml";
-  s.make_tracker = [] { return std::make_unique<test::PassThroughTracker>(); };
+  s.make_tracker = [] { return std::make_unique<track::RawCorridorTracker>(); };
   s.make_controller = [] { return std::make_unique<test::ProportionalController>(); };
   s.time_limit = 200.0;
   return s;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/nav_doubles.hpp"
+#include "rownav/track/raw_corridor.hpp"
 
 namespace rownav::navigate {
 namespace {
@@ -21,7 +22,7 @@ NavInput frame(double t, bool rows) {
 }
 
 struct Fixture {
-  test::PassThroughTracker tracker;
+  track::RawCorridorTracker tracker;
   test::ProportionalController controller;
   EndOfRowDetector eor;
   Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left, tracker, controller, eor};
