@@ -16,7 +16,7 @@ build: configure
 
 ## demo: install what is missing, build, run the main job (writes out/demo/)
 demo: build
-	$(BUILD)/rownav demo --out out/demo
+	$(BUILD)/rownav demo --out out/demo --overwrite
 
 ## test: install what is missing, build, run every test, then the quick closed-loop benchmark
 ## (fails when a tracked metric regresses beyond bench/quick_baseline.json's tolerances)

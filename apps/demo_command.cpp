@@ -21,7 +21,10 @@ void add_demo_command(CLI::App& app) {
   c->add_option("--out", *out, "output directory (default out/demo)");
   c->add_option("--config-dir", *config_dir, "the repository's config/ directory (default config)");
   c->add_flag("--quiet", *quiet, "no progress bar");
-  c->callback([out, config_dir, quiet] {
+  auto overwrite = std::make_shared<bool>(false);
+  c->add_flag("--overwrite", *overwrite,
+              "replace --out when it holds an earlier rownav output (never another folder)");
+  c->callback([out, config_dir, quiet, overwrite] {
     const auto& d = *config_dir;
     RunArgs a;
     a.field = d / "fields/demo_vineyard.yaml";
@@ -32,6 +35,7 @@ void add_demo_command(CLI::App& app) {
     a.nav_config = d / "navigate/vineyard.yaml";
     a.out = *out;
     a.quiet = *quiet;
+    a.overwrite = *overwrite;
     for (const auto& f : {a.field, a.robot, *a.sensor, a.mission, *a.detect_config, *a.nav_config})
       if (!std::filesystem::exists(f))
         throw io::InputError(f.string(), "",

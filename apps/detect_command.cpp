@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/io/safe_output.hpp"
 #include "detect_picture.hpp"
 #include "rownav/core/angle.hpp"
 #include "rownav/detect/pipeline.hpp"
@@ -30,6 +31,7 @@ struct DetectArgs {
   fs::path config, in, out, svg;
   std::vector<double> mount;  // x, y, z [m], roll, pitch, yaw [deg]
   int svg_frame = 0;
+  bool overwrite = false;
 };
 
 Eigen::Isometry3d mount_transform(const std::vector<double>& m) {
@@ -152,19 +154,12 @@ void run_recording(const DetectArgs& a, const Emit& emit) {
     emit(p, p.process(rec.scans[i]), static_cast<std::int64_t>(i));
 }
 
-// Removes the partial output unless the run completes (no half-written file on an error).
-struct PartialFile {
-  fs::path path;
-  bool done = false;
-  ~PartialFile() {
-    std::error_code ec;
-    if (!done) fs::remove(path, ec);
-  }
-};
-
 void run(const DetectArgs& a) {
-  PartialFile partial{fs::path(a.out.string() + ".partial")};
-  std::ofstream out(partial.path);
+  // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
+  io::OutputFile partial(a.out, a.overwrite);
+  std::optional<io::OutputFile> picture;
+  if (!a.svg.empty()) picture.emplace(a.svg, a.overwrite);
+  std::ofstream out(partial.staging());
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
   int index = 0;
   std::array<int, 3> by_status{};  // ok, degraded, no_rows
@@ -199,8 +194,7 @@ void run(const DetectArgs& a) {
   }
   out.close();
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
-  fs::rename(partial.path, a.out);
-  partial.done = true;
+  partial.commit();
   std::cout << a.detector << ": " << index << " frame(s) -> " << a.out.string() << " (ok "
             << by_status[0] << ", degraded " << by_status[1] << ", no_rows " << by_status[2]
             << ")\n";
@@ -208,9 +202,10 @@ void run(const DetectArgs& a) {
     if (!svg_obs)
       throw std::invalid_argument("--svg-frame " + std::to_string(a.svg_frame) +
                                   ": the input has " + std::to_string(index) + " frame(s)");
-    write_detection_picture(a.svg, svg_points, *svg_obs,
+    write_detection_picture(picture->staging(), svg_points, *svg_obs,
                             a.detector + ", frame " + std::to_string(a.svg_frame) + ": " +
                                 std::string(core::enum_name(svg_obs->status)));
+    picture->commit();
   }
 }
 
@@ -243,6 +238,7 @@ void add_detect_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingPath);
   c->add_option("--out", a->out, "JSON-lines output file")->required();
+  c->add_flag("--overwrite", a->overwrite, "replace existing --out / --svg files");
   c->add_option("--svg", a->svg, "picture (.svg or .png) of one frame: points and detected rows");
   c->add_option("--svg-frame", a->svg_frame, "0-based frame drawn by --svg (default 0)");
   c->add_option("--lidar-mount", a->mount,

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/io/safe_output.hpp"
 #include "picture.hpp"
 #include "rownav/core/angle.hpp"
 #include "rownav/io/recording.hpp"
@@ -28,6 +29,7 @@ struct RenderArgs {
   double at = 0.33;  // fraction of the corridor length
   double scale = 0.0;
   bool whole = false;
+  bool overwrite = false;
 };
 
 // Pose in the middle of a corridor, at a fraction of its length, facing along it.
@@ -86,6 +88,7 @@ void render_recorded(const RenderArgs& a, PictureContent& pic) {
 }
 
 void run_render(const RenderArgs& a) {
+  io::OutputFile out(a.out, a.overwrite);  // refused names are said before the work
   sim::FieldConfig field_config;
   const sim::Field field = load_field(a.field, &field_config);
   PictureContent pic;
@@ -95,7 +98,8 @@ void run_render(const RenderArgs& a) {
   if (!a.whole && pic.robot_pose)
     pic.window = window_around(pic.robot_pose->translation(), 14.0, 9.0);
   pic.title = a.field.filename().string() + (a.recording ? "  (recorded frame)" : "  (one LiDAR frame)");
-  write_picture(a.out, field, pic);
+  write_picture(out.staging(), field, pic);
+  out.commit();
   std::cout << "wrote " << a.out.string() << "\n";
 }
 
@@ -108,6 +112,7 @@ void add_render_command(CLI::App& app) {
                 "centres, posts, plants) and one LiDAR frame overlaid, coloured by height");
   c->add_option("--field", a->field, "field YAML")->required()->check(CLI::ExistingFile);
   c->add_option("--out", a->out, "picture to write (.png or .svg)")->required();
+  c->add_flag("--overwrite", a->overwrite, "replace an existing --out file");
   c->add_option("--recording", a->recording, "take the frame from this recording (rownav sim --out)")->check(CLI::ExistingDirectory);
   c->add_option("--frame", a->frame, "frame index in the recording (default: the middle one)");
   c->add_option("--pose", a->pose, "x,y,yaw_deg of the robot for a live scan (world frame)")->delimiter(',')->expected(3);

@@ -14,6 +14,7 @@
 #include "rownav/io/progress.hpp"
 #include "rownav/io/run_metrics.hpp"
 #include "rownav/io/run_report.hpp"
+#include "rownav/io/safe_output.hpp"
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
 #include "run_mission.hpp"
@@ -89,6 +90,8 @@ void print_summary(const io::RunSummary& s, const RunArgs& a) {
 }  // namespace
 
 bool run_mission(const RunArgs& a) {
+  // The output folder is checked first: a refused folder is said before minutes of simulation.
+  io::OutputDir out(a.out, a.overwrite, "run");
   sim::FieldConfig field_config;
   const sim::Field field = load_field(a.field, &field_config);
   io::ClosedLoopSetup s;
@@ -120,7 +123,8 @@ bool run_mission(const RunArgs& a) {
                      a.tracker,
                      a.controller,
                      a.seed};
-  io::write_run_report(a.out, r, summary, names, field);
+  io::write_run_report(out.staging(), r, summary, names, field);
+  out.commit();
   print_summary(summary, a);
   return summary.success;
 }
@@ -140,7 +144,9 @@ void add_run_command(CLI::App& app) {
   c->add_option("--mission", a->mission, "mission YAML (config/missions)")
       ->required()
       ->check(CLI::ExistingFile);
-  c->add_option("--out", a->out, "output directory")->required();
+  c->add_option("--out", a->out, "output directory (new or empty; see --overwrite)")->required();
+  c->add_flag("--overwrite", a->overwrite,
+              "replace --out when it holds an earlier rownav output (never another folder)");
   c->add_option("--sensor", a->sensor, "sensors YAML (config/sensors); default OS1-16")
       ->check(CLI::ExistingFile);
   c->add_option("--detector", a->detector, "row detector (default hough_skew)");

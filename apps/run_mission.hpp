@@ -23,6 +23,7 @@ struct RunArgs {
   std::uint64_t seed = 1;
   double time_limit = 1800.0;  ///< [s] simulated
   bool quiet = false;
+  bool overwrite = false;  ///< replace `out` when it is an earlier rownav output
 };
 
 /// Runs the mission, prints a short summary on stdout, writes the report into args.out.

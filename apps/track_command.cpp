@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "rownav/io/safe_output.hpp"
 #include "rownav/core/angle.hpp"
 #include "rownav/detect/pipeline.hpp"
 #include "rownav/io/detector_registry.hpp"
@@ -36,6 +37,7 @@ struct TrackArgs {
   std::string detector, tracker;
   fs::path in, out, svg, detect_config, track_config, localize_config;
   std::string odometry = "localizer";
+  bool overwrite = false;
 };
 
 /// T_odom_base at a stamp, nullopt when unknown. The one place the odometry comes from.
@@ -75,16 +77,6 @@ std::optional<std::pair<double, double>> truth_at(const std::vector<sim::GroundT
   }
   return std::nullopt;
 }
-
-/// Removes the partial output unless the run completes.
-struct PartialFile {
-  fs::path path;
-  bool done = false;
-  ~PartialFile() {
-    std::error_code ec;
-    if (!done) fs::remove(path, ec);
-  }
-};
 
 struct Stats {
   std::array<int, 3> by_status{};  // tracking, coasting, lost
@@ -216,8 +208,11 @@ void run(const TrackArgs& a) {
     replay->feed_until(t + period);
     return replay->localizer().T_odom_base(t);
   };
-  PartialFile partial{fs::path(a.out.string() + ".partial")};
-  std::ofstream out(partial.path);
+  // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
+  io::OutputFile partial(a.out, a.overwrite);
+  std::optional<io::OutputFile> picture;
+  if (!a.svg.empty()) picture.emplace(a.svg, a.overwrite);
+  std::ofstream out(partial.staging());
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
   out << "stamp,status,confidence,lateral,heading_deg,spacing,true_lateral,true_heading_deg,"
          "lateral_error,heading_error_deg\n";
@@ -239,14 +234,14 @@ void run(const TrackArgs& a) {
   for (const auto& scan : rec.scans) frame(pipeline.process(scan));
   out.close();
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
-  fs::rename(partial.path, a.out);
-  partial.done = true;
+  partial.commit();
   if (!a.svg.empty()) {
     io::PlotOptions o;
     o.title = a.detector + " + " + a.tracker + ": deviations (dashed: truth)";
     o.x_label = "time [s]";
     o.y_label = "lateral [cm], heading [deg]";
-    io::write_plot(a.svg, {st.est_lat, st.true_lat, st.est_head, st.true_head}, o);
+    io::write_plot(picture->staging(), {st.est_lat, st.true_lat, st.est_head, st.true_head}, o);
+    picture->commit();
   }
   const int frames = st.by_status[0] + st.by_status[1] + st.by_status[2];
   std::cout << a.tracker << " on " << a.detector << ": " << frames << " frame(s) -> "
@@ -286,6 +281,7 @@ void add_track_command(CLI::App& app) {
   c->add_option("--detector", a->detector, "row detector: " + detectors)->required();
   c->add_option("--tracker", a->tracker, "row tracker: " + trackers)->required();
   c->add_option("--out", a->out, "CSV output file")->required();
+  c->add_flag("--overwrite", a->overwrite, "replace existing --out / --svg files");
   c->add_option("--svg", a->svg, "plot (.svg or .png) of the deviations over time");
   c->add_option("--detect-config", a->detect_config,
                 "detection config YAML, e.g. config/detect/vineyard.yaml (default: built-in)")

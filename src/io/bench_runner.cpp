@@ -1,6 +1,8 @@
 // Parallel, resumable execution of benchmark cells as child processes.
 #include "rownav/io/bench_runner.hpp"
 
+#include "rownav/io/safe_output.hpp"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -25,6 +27,26 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 volatile std::sig_atomic_t g_stop = 0;
+
+/// Removes the staging folders io::OutputDir left for `dir` (".<name>.rownav-partial-XXXXXX").
+void remove_staging_of(const fs::path& dir) {
+  std::error_code ec;
+  std::string prefix(1, '.');  // appended: GCC 12 warns on "." + string (-Wrestrict)
+  prefix.append(dir.filename().string()).append(".rownav-");
+  for (const auto& e : fs::directory_iterator(dir.parent_path(), ec))
+    if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove_all(e.path(), ec);
+}
+
+/// The bench folder must be new, empty or an earlier bench output (resumed): never a user's.
+void claim_bench_dir(const fs::path& out) {
+  check_output_dir(out, true);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw std::runtime_error(out.string() + ": cannot create: " + ec.message());
+  if (is_rownav_output(out)) return;
+  std::ofstream(out / kOutputMarker) << "rownav bench\n";
+  if (!is_rownav_output(out)) throw std::runtime_error(out.string() + ": cannot write");
+}
 
 extern "C" void on_stop_signal(int) {
   g_stop = 1;
@@ -140,9 +162,10 @@ class Batch {
       finish(i, CellStatus::resumed, "resumed: summary.json exists, not run again");
       return;
     }
-    // A fresh start: no half-written output of an earlier, killed attempt.
+    // A fresh start: no half-written output of an earlier, killed attempt (the bench folder is
+    // rownav's, claimed by run_cells; a runner killed with SIGKILL may leave its staging folder).
     fs::remove_all(dir);
-    fs::remove_all(fs::path(dir.string() + ".partial"));
+    remove_staging_of(dir);
     fs::create_directories(dir.parent_path());
     int error = 0;
     const pid_t pid = spawn(o_.runner, cells_[i].run_args(dir), running_log(i), error);
@@ -246,6 +269,7 @@ BenchRunResult run_cells(const std::vector<BenchCell>& cells, const fs::path& ou
   if (::access(options.runner.c_str(), X_OK) != 0)
     throw std::runtime_error(options.runner.string() + ": runner is not an executable file");
   if (options.jobs < 1) throw std::invalid_argument("--jobs: must be >= 1");
+  claim_bench_dir(out);
   return Batch(cells, out, options).run();
 }
 

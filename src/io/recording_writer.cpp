@@ -34,20 +34,14 @@ void write_row_line(std::ostream& out, const sim::GroundTruth& gt, int id) {
 }  // namespace
 
 RecordingWriter::RecordingWriter(const fs::path& dir, YAML::Node manifest, bool overwrite)
-    : dir_(dir), partial_(dir.string() + ".partial"), manifest_(manifest), overwrite_(overwrite) {
-  std::error_code ec;
-  if (!overwrite && fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec)))
-    fail(dir, "already exists and is not empty (choose another output or overwrite)");
+    : manifest_(manifest) {
   if (manifest_ && !manifest_.IsNull() && !manifest_.IsMap()) fail(dir, "manifest must be a map");
-  fs::remove_all(partial_, ec);  // left over by a killed run: ours by its name
-  if (!fs::create_directories(partial_, ec) || ec) fail(partial_, "cannot create: " + ec.message());
+  out_ = std::make_unique<OutputDir>(dir, overwrite, "recording");
+  partial_ = out_->staging();
 }
 
 RecordingWriter::~RecordingWriter() {
-  if (committed_) return;
-  streams_.clear();
-  std::error_code ec;
-  fs::remove_all(partial_, ec);
+  streams_.clear();  // closed before the staging directory is removed (uncommitted)
 }
 
 std::ofstream& RecordingWriter::stream(const std::string& rel, const char* header) {
@@ -126,7 +120,7 @@ void RecordingWriter::write_field(const sim::Field& field) {
 }
 
 void RecordingWriter::commit() {
-  if (committed_) throw std::logic_error("RecordingWriter::commit called twice");
+  if (out_->committed()) throw std::logic_error("RecordingWriter::commit called twice");
   for (auto& [name, s] : streams_) {
     s->close();
     if (!*s) fail(partial_ / name, "write failed (disk full?)");
@@ -140,11 +134,7 @@ void RecordingWriter::commit() {
       if (kv.first.Scalar() != "format" && kv.first.Scalar() != "version")
         m[kv.first.Scalar()] = kv.second;
   save_yaml(partial_ / "manifest.yaml", m);
-  std::error_code ec;
-  if (overwrite_) fs::remove_all(dir_, ec);
-  fs::rename(partial_, dir_, ec);
-  if (ec) fail(dir_, "cannot move " + partial_.string() + " into place: " + ec.message());
-  committed_ = true;
+  out_->commit();
 }
 
 }  // namespace rownav::io

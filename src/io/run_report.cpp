@@ -200,11 +200,9 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   return j.dump(2);
 }
 
-void write_run_report(const fs::path& out, const RunResult& run, const RunSummary& summary,
+void write_run_report(const fs::path& partial, const RunResult& run, const RunSummary& summary,
                       const RunNames& names, const sim::Field& field) {
-  const fs::path partial = out.string() + ".partial";
   std::error_code ec;
-  fs::remove_all(partial, ec);
   fs::create_directories(partial, ec);
   if (ec) throw std::runtime_error(partial.string() + ": cannot create: " + ec.message());
   const std::string js = summary_json(summary, names);
@@ -223,9 +221,6 @@ void write_run_report(const fs::path& out, const RunResult& run, const RunSummar
   lateral_png.save(partial / "lateral_error.png");
   speed_png.save(partial / "speed.png");
   write_text(partial / "trajectory.csv", trajectory_csv(run));
-  fs::remove_all(out, ec);
-  fs::rename(partial, out, ec);
-  if (ec) throw std::runtime_error(out.string() + ": cannot write: " + ec.message());
 }
 
 }  // namespace rownav::io

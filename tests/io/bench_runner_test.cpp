@@ -1,5 +1,6 @@
 // Running benchmark cells through a fake runner: resume, parallel jobs, a failing cell.
 #include "rownav/io/bench_runner.hpp"
+#include "rownav/io/safe_output.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,6 +28,7 @@ TEST(BenchRunner, ResumeSkipsCellsWithSummary) {
   ASSERT_EQ(cells.size(), 3u);
   const fs::path out = dir / "out";
   fs::create_directories(cell_dir(out, cells[1]));
+  std::ofstream(out / std::string(kOutputMarker)) << "rownav bench\n";  // an earlier bench's folder
   std::ofstream(cell_dir(out, cells[1]) / "summary.json") << "{\"success\": true}\n";
   fs::create_directories(cell_dir(out, cells[2]));  // a killed run: no summary.json
   std::ostringstream progress;
@@ -45,6 +47,17 @@ TEST(BenchRunner, ResumeSkipsCellsWithSummary) {
   const auto again = run_cells(cells, out, o);
   EXPECT_EQ(again.count(CellStatus::resumed), 3);
   EXPECT_EQ(count_lines(read_file(dir / "invocations.txt")), 2);
+}
+
+TEST(BenchRunner, AUsersNonEmptyFolderIsRefusedAndKept) {
+  TempDir dir("bench");
+  const auto cells =
+      expand_scenario(load_scenario(test::write_test_scenario(dir.path(), "[pearl]", "[1]")));
+  std::ofstream(dir / "notes.txt") << "mine";
+  BenchRunnerOptions o{test::write_fake_runner(dir.path()), 1, nullptr};
+  EXPECT_THROW(run_cells(cells, dir.path(), o), std::runtime_error);
+  EXPECT_EQ(read_file(dir / "notes.txt"), "mine");
+  EXPECT_FALSE(fs::exists(dir / "runs"));
 }
 
 TEST(BenchRunner, FailingCellIsReportedOthersComplete) {

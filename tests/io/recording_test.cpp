@@ -166,26 +166,30 @@ TEST_F(RecordingTest, UncommittedRunLeavesNothing) {
   try {
     RecordingWriter w(dir_, {});
     w.write_cloud(make_run().clouds[0]);
-    EXPECT_TRUE(fs::exists(root_ / "run.partial/lidar/000000.pcd"));
+    EXPECT_TRUE(fs::exists(w.partial_dir() / "lidar/000000.pcd"));
+    EXPECT_FALSE(fs::exists(dir_));
     throw std::runtime_error("simulated failure mid-run");
   } catch (const std::runtime_error&) {
   }
-  EXPECT_FALSE(fs::exists(root_ / "run.partial"));
   EXPECT_FALSE(fs::exists(dir_));
+  for (const auto& e : fs::directory_iterator(root_))  // no staging folder left either
+    EXPECT_EQ(e.path().filename().string().find(".rownav-partial"), std::string::npos) << e.path();
 }
 
-TEST_F(RecordingTest, RefusesExistingDirUnlessOverwrite) {
+TEST_F(RecordingTest, ReplacesOnlyAnEarlierRecordingAndOnlyWithOverwrite) {
   fs::create_directories(dir_);
   std::ofstream(dir_ / "keep.txt") << "x";
   EXPECT_THROW(RecordingWriter(dir_, {}), std::runtime_error);
+  EXPECT_THROW(RecordingWriter(dir_, {}, true), std::runtime_error);  // not rownav's folder
   EXPECT_TRUE(fs::exists(dir_ / "keep.txt"));
-  {
+  fs::remove_all(dir_);
+  for (int imu : {2, 1}) {
     RecordingWriter w(dir_, {}, true);
-    w.write_imu({});
+    for (int i = 0; i < imu; ++i) w.write_imu({});
     w.commit();
   }
-  EXPECT_FALSE(fs::exists(dir_ / "keep.txt"));
   EXPECT_EQ(read_recording(dir_).imu.size(), 1u);
+  EXPECT_THROW(RecordingWriter(dir_, {}), std::runtime_error);  // without --overwrite
 }
 
 TEST_F(RecordingTest, MalformedCsvNamesFileAndLine) {

@@ -27,18 +27,20 @@
 #include "rownav/core/point_cloud.hpp"
 #include "rownav/core/scan2d.hpp"
 #include "rownav/core/sensor_samples.hpp"
+#include "rownav/io/safe_output.hpp"
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/ground_truth.hpp"
 
 namespace rownav::io {
 
-/// Streams a run into `<dir>.partial` and renames it to `<dir>` on commit(), so a crash never
-/// leaves a half-written output directory; destroyed without commit() it removes the partial
-/// directory. Not thread-safe.
+/// Streams a run into a hidden staging directory beside `<dir>` and moves it to `<dir>` on
+/// commit() (io::OutputDir), so a crash, Ctrl-C or SIGTERM never leaves a half-written output;
+/// destroyed without commit() it removes the staging directory. Not thread-safe.
 class RecordingWriter {
  public:
-  /// Refuses (std::runtime_error) an existing non-empty `dir` unless `overwrite`, in which case
-  /// the old directory is replaced on commit(). `manifest` must be a map or null.
+  /// Refuses (std::runtime_error) an existing non-empty `dir` unless `overwrite` and `dir` is an
+  /// earlier rownav output (io::check_output_dir), which is then replaced on commit().
+  /// `manifest` must be a map or null.
   RecordingWriter(const std::filesystem::path& dir, YAML::Node manifest, bool overwrite = false);
   ~RecordingWriter();
   RecordingWriter(const RecordingWriter&) = delete;
@@ -55,16 +57,15 @@ class RecordingWriter {
 
   /// Flushes every file, writes manifest.yaml and renames the directory into place.
   void commit();
-  /// Directory being written (`<dir>.partial`).
+  /// Directory being written (the staging directory until commit()).
   const std::filesystem::path& partial_dir() const { return partial_; }
 
  private:
   std::ofstream& stream(const std::string& rel, const char* header);
 
-  std::filesystem::path dir_, partial_;
+  std::unique_ptr<OutputDir> out_;
+  std::filesystem::path partial_;
   YAML::Node manifest_;
-  bool overwrite_ = false;
-  bool committed_ = false;
   bool field_written_ = false;
   std::size_t clouds_ = 0;
   std::vector<std::pair<std::string, std::unique_ptr<std::ofstream>>> streams_;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file run_report.hpp Writes a closed-loop run's outputs into a directory: summary.json
 /// (docs/summary_json.md), report.html (self-contained, inline SVGs), top_view.svg and
-/// trajectory.csv. Everything goes to DIR.partial first, renamed to DIR on success.
+/// trajectory.csv. The caller owns the directory: an io::OutputDir's staging directory, moved
+/// into place when everything is written.
 #include <filesystem>
 #include <string>
 
@@ -19,9 +20,10 @@ struct RunNames {
 /// summary.json content (pretty-printed JSON text).
 std::string summary_json(const RunSummary& s, const RunNames& names);
 
-/// Writes summary.json, report.html, top_view.svg, trajectory.csv into `out` (replaced).
-/// Throws std::runtime_error when the directory cannot be written.
-void write_run_report(const std::filesystem::path& out, const RunResult& run,
+/// Writes summary.json, report.html, top_view.{svg,png}, the plots and trajectory.csv into `dir`
+/// (created when missing; nothing else in it is touched). Throws std::runtime_error when the
+/// directory cannot be written.
+void write_run_report(const std::filesystem::path& dir, const RunResult& run,
                       const RunSummary& summary, const RunNames& names, const sim::Field& field);
 
 }  // namespace rownav::io
