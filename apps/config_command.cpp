@@ -23,13 +23,13 @@ void dump(const std::string& what, const std::string& file) {
     node = io::encode_config(sim::SimConfig{});
   } else if (what == "path") {
     node = io::encode_config(sim::PathConfig{});
-  } else if (what == "navigate") {
+  } else if (what == "navigate" || what == "stack") {
     node = io::encode_config(navigate::NavStackConfig{});
   } else if (what.rfind("lidar:", 0) == 0) {
     node = io::encode_config(sim::lidar_preset(what.substr(6)));
   } else {
     throw std::invalid_argument("config --dump: unknown kind '" + what +
-                                "' (field, robot, sensors, path, navigate, lidar:<preset>)");
+                                "' (field, robot, sensors, path, navigate | stack, lidar:<preset>)");
   }
   if (!file.empty()) {
     io::save_yaml(file, node);
@@ -48,7 +48,7 @@ void add_config_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand(
       "config", "Print the default configuration of a component as YAML (every key a config file "
                 "may set, with its default value)");
-  c->add_option("--dump", *what, "field | robot | sensors | path | navigate | lidar:<preset>")
+  c->add_option("--dump", *what, "field | robot | sensors | path | navigate (= stack) | lidar:<preset>")
       ->required();
   c->add_option("--out", *file, "write to this file instead of stdout");
   c->callback([what, file] { dump(*what, *file); });

@@ -9,7 +9,9 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/io/recording_replay.hpp"
 #include "rownav/io/safe_output.hpp"
+#include "rownav/navigate/nav_stack.hpp"
 #include "detect_picture.hpp"
 #include "rownav/core/angle.hpp"
 #include "rownav/detect/pipeline.hpp"
@@ -145,13 +147,20 @@ void run_recording(const DetectArgs& a, const Emit& emit) {
       throw io::InputError(manifest, "", "no sensors.lidar (the LiDAR mount): give --lidar-mount");
     T = io::decode_sim_config(rec.manifest["sensors"], manifest).lidar.T_base_lidar();
   }
-  auto p = io::make_pipeline(a.detector, a.config, T);
   if (rec.cloud_count() == 0 && rec.scans.empty())
     throw io::InputError(a.in.string(), "", "recording has no LiDAR frames");
-  for (std::size_t i = 0; i < rec.cloud_count(); ++i)
-    emit(p, p.process(rec.cloud(i)), static_cast<std::int64_t>(i));
-  for (std::size_t i = 0; i < rec.scans.size(); ++i)
-    emit(p, p.process(rec.scans[i]), static_cast<std::int64_t>(i));
+  // The one stack, as far as the detector: 3D sweeps are levelled by the recorded IMU's gravity
+  // as on the robot (a cross slope otherwise biases the corridor centre towards uphill).
+  navigate::NavStackConfig config;
+  config.stack.mode = navigate::StackMode::detect;
+  navigate::NavStackParts parts;
+  parts.pipeline =
+      std::make_unique<detect::DetectionPipeline>(io::make_pipeline(a.detector, a.config, T));
+  navigate::NavStack stack(config, std::move(parts));
+  std::int64_t frame = 0;
+  io::replay_recording(rec, stack, {}, [&](const navigate::NavCommand& c) {
+    emit(stack.pipeline(), c.frame->observation, frame++);
+  });
 }
 
 void run(const DetectArgs& a) {

@@ -58,9 +58,7 @@ std::filesystem::path crop_config_for(const RunArgs& a, const sim::FieldConfig& 
 void load_nav_stack(const RunArgs& a, const sim::FieldConfig& field, io::ClosedLoopSetup& s) {
   const auto file = crop_config_for(a, field, a.nav_config, "navigate", "--nav-config");
   if (file.empty()) return;
-  const auto stack = io::load_config<navigate::NavStackConfig>(file);
-  s.navigator = stack.navigator;
-  s.end_of_row = stack.end_of_row;
+  s.nav = io::load_config<navigate::NavStackConfig>(file);
 }
 
 void print_summary(const io::RunSummary& s, const RunArgs& a) {
@@ -101,7 +99,7 @@ bool run_mission(const RunArgs& a) {
   s.sensors.seed = a.seed;
   s.mission = io::load_mission(a.mission);
   load_nav_stack(a, field_config, s);
-  if (a.row_end_policy) s.navigator.row_ends.policy = *a.row_end_policy;
+  if (a.row_end_policy) s.nav.navigator.row_ends.policy = *a.row_end_policy;
   s.detector = a.detector;
   s.detect_config =
       crop_config_for(a, field_config, a.detect_config, "detect", "--detect-config");

@@ -13,14 +13,15 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "rownav/io/recording_replay.hpp"
 #include "rownav/io/safe_output.hpp"
+#include "rownav/navigate/nav_stack.hpp"
 #include "rownav/core/angle.hpp"
 #include "rownav/detect/pipeline.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/localize_setup.hpp"
 #include "rownav/io/yaml_config.hpp"
-#include "rownav/localize/gravity_up.hpp"
 #include "rownav/localize/localizer.hpp"
 #include "rownav/io/plot.hpp"
 #include "rownav/io/recording.hpp"
@@ -40,29 +41,11 @@ struct TrackArgs {
   bool overwrite = false;
 };
 
-/// T_odom_base at a stamp, nullopt when unknown. The one place the odometry comes from.
-using OdometrySource = std::function<std::optional<core::Pose2>(double stamp)>;
-
 /// Index of the last sample at or before t in a stamp-sorted ground truth, -1 if none.
 long before(const std::vector<sim::GroundTruth>& gt, double t) {
   const auto it = std::upper_bound(gt.begin(), gt.end(), t,
                                    [](double s, const sim::GroundTruth& g) { return s < g.stamp; });
   return static_cast<long>(it - gt.begin()) - 1;
-}
-
-// Odometry from the recorded true poses, interpolated (`--odometry truth`: analysis only).
-OdometrySource ground_truth_odometry(const io::Recording& rec) {
-  return [&gt = rec.ground_truth](double t) -> std::optional<core::Pose2> {
-    const long i = before(gt, t);
-    if (i < 0 || static_cast<std::size_t>(i) + 1 >= gt.size()) {
-      if (!gt.empty() && std::abs(gt.back().stamp - t) < 1e-6) return gt.back().T_world_base;
-      return std::nullopt;
-    }
-    const auto& a = gt[std::size_t(i)];
-    const auto& b = gt[std::size_t(i) + 1];
-    const double s = b.stamp > a.stamp ? (t - a.stamp) / (b.stamp - a.stamp) : 0.0;
-    return core::interpolate(a.T_world_base, b.T_world_base, s);
-  };
 }
 
 /// True lateral / heading error at t when the robot is in a lane (nearest sample within 0.05 s).
@@ -139,44 +122,6 @@ localize::LocalizerConfig localizer_config(const TrackArgs& a, const io::Recordi
   return {};
 }
 
-/// The wheel + IMU (+ GNSS) Localizer fed with the recording's samples in time order up to a
-/// time (a sweep stamped t is complete at t + period: a live robot has every sample up to then).
-class LocalizerReplay {
- public:
-  LocalizerReplay(const io::Recording& rec, const localize::LocalizerConfig& c)
-      : rec_(rec), loc_(c) {}
-  void feed_until(double t) {
-    for (;;) {
-      const double te = ie_ < rec_.encoders.size() ? rec_.encoders[ie_].stamp : kNever;
-      const double ti = ii_ < rec_.imu.size() ? rec_.imu[ii_].stamp : kNever;
-      const double tg = ig_ < rec_.gnss.size() ? rec_.gnss[ig_].stamp : kNever;
-      const double next = std::min({te, ti, tg});
-      if (!(next <= t)) return;
-      if (te == next) loc_.add_encoders(rec_.encoders[ie_++]);
-      else if (ti == next) loc_.add_imu(rec_.imu[ii_++]);
-      else loc_.add_gnss(rec_.gnss[ig_++]);
-    }
-  }
-  const localize::Localizer& localizer() const { return loc_; }
-
- private:
-  static constexpr double kNever = std::numeric_limits<double>::infinity();
-  const io::Recording& rec_;
-  localize::Localizer loc_;
-  std::size_t ie_ = 0, ii_ = 0, ig_ = 0;
-};
-
-/// [s] LiDAR period: the median interval between recorded frames (0.1 s when unknown).
-double sweep_period(const io::Recording& rec) {
-  std::vector<double> d;
-  for (std::size_t i = 1; i < rec.cloud_stamps.size(); ++i)
-    d.push_back(rec.cloud_stamps[i] - rec.cloud_stamps[i - 1]);
-  if (d.empty()) return 0.1;
-  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
-  const double p = d[d.size() / 2];
-  return p > 0.0 && std::isfinite(p) ? p : 0.1;
-}
-
 Eigen::Isometry3d recording_mount(const io::Recording& rec, const fs::path& dir) {
   const std::string manifest = (dir / "manifest.yaml").string();
   if (!rec.manifest["sensors"] || !rec.manifest["sensors"]["lidar"])
@@ -195,19 +140,20 @@ void run(const TrackArgs& a) {
     throw io::InputError(a.in.string(), "", "--odometry truth: recording has no ground_truth.csv");
   if (!truth && rec.encoders.empty())
     throw io::InputError(a.in.string(), "", "recording has no encoders.csv (try --odometry truth)");
-  auto tracker = io::make_tracker(a.tracker, a.track_config);
-  auto pipeline = io::make_pipeline(a.detector, a.detect_config, recording_mount(rec, a.in));
+  // The one stack, run as far as the tracker, fed the recording as a robot would be.
+  navigate::NavStackConfig config;
+  config.stack.mode = navigate::StackMode::track;
   std::string source = "recorded ground truth";
-  std::optional<LocalizerReplay> replay;
-  if (!truth) replay.emplace(rec, localizer_config(a, rec, source));
+  if (truth)
+    config.stack.odometry = navigate::OdometryInput::external;
+  else
+    config.localizer = localizer_config(a, rec, source);
+  navigate::NavStackParts parts;
+  parts.tracker = io::make_tracker(a.tracker, a.track_config);
+  parts.pipeline = std::make_unique<detect::DetectionPipeline>(
+      io::make_pipeline(a.detector, a.detect_config, recording_mount(rec, a.in)));
+  navigate::NavStack stack(config, std::move(parts));
   std::cout << "odometry: " << (truth ? source : "Localizer, " + source) << "\n";
-  const double period = sweep_period(rec);
-  const OdometrySource truth_odom = ground_truth_odometry(rec);
-  const OdometrySource odometry = [&](double t) -> std::optional<core::Pose2> {
-    if (!replay) return truth_odom(t);
-    replay->feed_until(t + period);
-    return replay->localizer().T_odom_base(t);
-  };
   // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
   io::OutputFile partial(a.out, a.overwrite);
   std::optional<io::OutputFile> picture;
@@ -218,20 +164,12 @@ void run(const TrackArgs& a) {
          "lateral_error,heading_error_deg\n";
   Stats st;
   int skipped = 0;
-  const auto frame = [&](const core::RowObservation& obs) {
-    const auto T = odometry(obs.stamp);
-    if (!T) return void(++skipped);  // no odometry at that stamp: the tracker cannot use it
-    record(tracker->update(obs, *T), rec.ground_truth, out, st);
-  };
-  for (std::size_t i = 0; i < rec.cloud_count(); ++i) {
-    const core::PointCloud cloud = rec.cloud(i);
-    // Levelled with the accelerometer's gravity over the sweep (localize/gravity_up.hpp).
-    const double v = replay ? replay->localizer().latest().twist.v : 0.0;
-    if (replay) replay->feed_until(cloud.stamp + period);
-    const auto up = localize::gravity_up(rec.imu, cloud.stamp, cloud.stamp + period, v);
-    frame(up ? pipeline.process(cloud, *up) : pipeline.process(cloud));
-  }
-  for (const auto& scan : rec.scans) frame(pipeline.process(scan));
+  io::ReplayOptions options;
+  options.truth_odometry = truth;
+  io::replay_recording(rec, stack, options, [&](const navigate::NavCommand& c) {
+    if (!c.frame->tracking) return void(++skipped);  // no odometry at that stamp
+    record(*c.frame->tracking, rec.ground_truth, out, st);
+  });
   out.close();
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
   partial.commit();

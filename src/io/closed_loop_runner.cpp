@@ -1,4 +1,4 @@
-// The closed loop: simulator -> detection -> tracking -> end of row -> navigator -> robot.
+// The closed loop: simulator samples -> navigate::NavStack -> command -> simulator.
 #include "rownav/io/closed_loop_runner.hpp"
 
 #include <chrono>
@@ -6,10 +6,8 @@
 #include <deque>
 #include <stdexcept>
 
-#include "rownav/control/velocity_limits.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/io/localize_setup.hpp"
-#include "rownav/localize/gravity_up.hpp"
 #include "rownav/sim/field_truth.hpp"
 
 namespace rownav::io {
@@ -31,35 +29,29 @@ double polygon_distance(const std::array<Eigen::Vector2d, 4>& poly, const Eigen:
   return inside ? 0.0 : best;
 }
 
-/// Collects the simulator's output for the stack and the metrics.
+/// Hands the simulator's samples to the stack and collects the metrics.
 class RunnerSink : public sim::SimSink {
  public:
-  RunnerSink(OdometrySource& odom, const sim::Simulator& sim, const sim::Field& field,
+  RunnerSink(navigate::NavStack& stack, const sim::Simulator& sim, const sim::Field& field,
              RunResult& result)
-      : odom_(odom), sim_(sim), result_(result) {
+      : stack_(stack), sim_(sim), result_(result) {
     for (const auto& p : field.plants)
       if (p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post) posts_.push_back(p);
   }
   void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>&) override {
-    cloud_ = c;
-    has_cloud_ = true;
+    stack_.on_cloud(c);
   }
   void on_scan(const core::Scan2D& s, const std::vector<sim::SurfaceClass>&) override {
-    scan_ = s;
-    has_scan_ = true;
+    stack_.on_scan(s);
   }
-  void on_encoders(const core::WheelEncoderSample& s) override { odom_.on_encoders(s); }
-  void on_imu(const core::ImuSample& s) override {
-    odom_.on_imu(s);
-    imu_.push_back(s);  // the last second, to level each sweep by gravity
-    while (!imu_.empty() && imu_.front().stamp < s.stamp - 1.0) imu_.pop_front();
-  }
-  void on_gnss(const core::GnssFix& s) override { odom_.on_gnss(s); }
+  void on_encoders(const core::WheelEncoderSample& s) override { stack_.on_encoders(s); }
+  void on_imu(const core::ImuSample& s) override { stack_.on_imu(s); }
+  void on_gnss(const core::GnssFix& s) override { stack_.on_gnss(s); }
   void on_ground_truth(const sim::GroundTruth& g) override {
     RunSample s;
     s.stamp = g.stamp;
     s.T_world_base = g.T_world_base;
-    s.T_odom_base = odom_.T_odom_base(g.stamp).value_or(core::Pose2());
+    s.T_odom_base = stack_.T_odom_base(g.stamp).value_or(core::Pose2());
     s.place = g.place;
     s.corridor = g.corridor;
     s.planned_corridor = planned;
@@ -77,14 +69,10 @@ class RunnerSink : public sim::SimSink {
     result_.samples.push_back(s);
   }
 
-  OdometrySource& odom_;
+  navigate::NavStack& stack_;
   const sim::Simulator& sim_;
   RunResult& result_;
   std::vector<sim::Plant> posts_;
-  core::PointCloud cloud_;
-  core::Scan2D scan_;
-  std::deque<core::ImuSample> imu_;
-  bool has_cloud_ = false, has_scan_ = false;
   navigate::NavState state = navigate::NavState::in_row;
   int planned = -1;
   core::Twist2 cmd;
@@ -118,18 +106,24 @@ FrameSample score_frame(const track::RowTracking& t, const sim::GroundTruth& g, 
   return f;
 }
 
-/// One 3D sweep through the pipeline, levelled by the gravity the IMU measured during the sweep
-/// when the set-up asks for it (a rolling base shifts the rows sideways by h sin(roll)).
-core::RowObservation process_cloud(detect::DetectionPipeline& pipeline, const RunnerSink& sink,
-                                   double speed, const ClosedLoopSetup& setup) {
-  if (setup.level_by_gravity) {
-    const std::vector<core::ImuSample> imu(sink.imu_.begin(), sink.imu_.end());
-    const double t0 = sink.cloud_.stamp;
-    const double t1 = t0 + 1.0 / setup.sensors.lidar.rate_hz;
-    if (const auto up = localize::gravity_up(imu, t0, t1, speed))
-      return pipeline.process(sink.cloud_, *up);
+/// The mission's record of one command: events, entries (planned vs true corridor), row ends.
+void record(navigate::NavCommand& out, const navigate::NavStack& stack, const sim::Simulator& sim,
+            RunResult& result) {
+  for (auto& e : out.events) {
+    if (e.kind == navigate::NavEventKind::entered_corridor ||
+        (e.kind == navigate::NavEventKind::safe_stop &&
+         out.stop_reason == navigate::StopReason::place_contradicts_plan))
+      result.entries.emplace_back(e.corridor, sim.ground_truth().corridor);
+    result.events.push_back(std::move(e));
   }
-  return pipeline.process(sink.cloud_);
+  // Row ends estimated by the stack (odom frame), mapped into the world through the robot's
+  // true pose at this instant: the error measured is that of the LiDAR estimate relative to
+  // the robot (003 Table II), not the odometry drift accumulated since the start.
+  const auto& ends = stack.navigator().row_ends_odom();
+  const core::Pose2 T = stack.T_odom_base(sim.time()).value_or(core::Pose2());
+  for (std::size_t k = result.row_ends_world.size(); k < ends.size(); ++k)
+    result.row_ends_world.push_back(sim.robot_state().pose * (T.inverse() * ends[k]));
+  result.served = out.served;
 }
 
 }  // namespace
@@ -158,6 +152,23 @@ core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& 
   return {p.x(), p.y(), std::atan2(e.y(), e.x())};
 }
 
+void nav_stack_robot(navigate::NavStackConfig& nav, const sim::RobotConfig& robot,
+                     const sim::SimConfig& sensors) {
+  nav.robot.width = robot.width;
+  nav.robot.base_to_front = robot.base_to_front;
+  nav.robot.turn = {robot.can_turn_in_place(), robot.min_turn_radius()};
+  // The robot's limits are applied to every command, as a base controller would (the
+  // controllers and manoeuvres do not clamp themselves).
+  nav.limits.max_speed = robot.max_speed;
+  nav.limits.max_reverse_speed = robot.max_reverse_speed;
+  nav.limits.max_yaw_rate = robot.max_yaw_rate;
+  nav.limits.max_accel = robot.max_accel;
+  nav.limits.max_yaw_accel = robot.max_yaw_accel;
+  nav.limits.min_turn_radius = robot.min_turn_radius();
+  nav.localizer = localizer_config_for(robot, sensors);
+  nav.stack.sweep_period = 1.0 / sensors.lidar.rate_hz;
+}
+
 RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   core::check(setup.field != nullptr, "field", "missing");
   core::check(static_cast<bool>(setup.make_tracker), "tracker", "no tracker factory");
@@ -168,33 +179,17 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   const core::Pose2 start = mission_start(truth, result.order, setup.mission.block,
                                           setup.mission.first_turn, setup.lead_in);
   result.T_world_odom = start;
-  auto pipeline =
-      make_pipeline(setup.detector, setup.detect_config, setup.sensors.lidar.T_base_lidar());
-  auto tracker = setup.make_tracker();
-  auto controller = setup.make_controller();
-  std::unique_ptr<OdometrySource> odom =
-      setup.make_odometry
-          ? setup.make_odometry()
-          : std::make_unique<LocalizerOdometry>(localizer_config_for(setup.robot, setup.sensors));
-  navigate::EndOfRowDetector eor(setup.end_of_row);
-  navigate::Navigator nav(setup.navigator, result.order, setup.mission.first_turn, *tracker,
-                          *controller, eor);
-  navigate::RobotLimits limits;
-  limits.width = setup.robot.width;
-  limits.base_to_front = setup.robot.base_to_front;
-  limits.turn = {setup.robot.can_turn_in_place(), setup.robot.min_turn_radius()};
-  // The robot's limits are applied to every command, as a base controller would (the
-  // controllers and manoeuvres do not clamp themselves).
-  control::VelocityLimits vlim;
-  vlim.max_speed = setup.robot.max_speed;
-  vlim.max_reverse_speed = setup.robot.max_reverse_speed;
-  vlim.max_yaw_rate = setup.robot.max_yaw_rate;
-  vlim.max_accel = setup.robot.max_accel;
-  vlim.max_yaw_accel = setup.robot.max_yaw_accel;
-  vlim.min_turn_radius = setup.robot.min_turn_radius();
+  navigate::NavStackConfig nav = setup.nav;
+  nav_stack_robot(nav, setup.robot, setup.sensors);
+  navigate::NavStackParts parts;
+  parts.pipeline = std::make_unique<detect::DetectionPipeline>(
+      make_pipeline(setup.detector, setup.detect_config, setup.sensors.lidar.T_base_lidar()));
+  parts.tracker = setup.make_tracker();
+  parts.controller = setup.make_controller();
+  navigate::NavStack stack(nav, std::move(parts), result.order, setup.mission.first_turn);
 
   sim::Simulator sim(*setup.field, setup.robot, setup.sensors, start);
-  RunnerSink sink(*odom, sim, *setup.field, result);
+  RunnerSink sink(stack, sim, *setup.field, result);
   const auto wall0 = Clock::now();
   core::Twist2 cmd;
   double next_progress = 0.0;
@@ -204,50 +199,19 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
       break;
     }
     sim.step(cmd, sink);
-    odom->on_physics_step(sim.robot_state());
-    const core::Pose2 T = odom->T_odom_base(sim.time()).value_or(core::Pose2());
-    navigate::NavOutput out;
-    if (sink.has_cloud_ || sink.has_scan_) {
-      const auto t0 = Clock::now();
-      const bool was_in_row = nav.state() == navigate::NavState::in_row;
-      navigate::NavInput in;
-      in.observation = sink.has_cloud_ ? process_cloud(pipeline, sink, odom->twist().v, setup)
-                                       : pipeline.process(sink.scan_);
-      sink.has_cloud_ = sink.has_scan_ = false;
-      in.stamp = sim.time();
-      in.T_odom_base = T;
-      in.twist = odom->twist();
-      // The frame is stamped at the start of the sweep: the tracker gets the pose of that instant.
-      in.tracking =
-          tracker->update(in.observation, odom->T_odom_base(in.observation.stamp).value_or(T));
-      in.end_of_row = eor.update(pipeline.last_cloud_base(), pipeline.last_points(), in.tracking);
-      in.points_base = pipeline.last_points();
-      in.robot = limits;
-      out = nav.step(in);
-      FrameSample f = score_frame(in.tracking, sim.ground_truth(),
+    const bool was_in_row = stack.navigator().state() == navigate::NavState::in_row;
+    navigate::NavCommand out = stack.command(sim.time());
+    cmd = out.cmd;
+    if (out.frame && out.frame->tracking) {
+      FrameSample f = score_frame(*out.frame->tracking, sim.ground_truth(),
                                   was_in_row && sim.ground_truth().place == sim::Place::lane);
-      f.latency = std::chrono::duration<double>(Clock::now() - t0).count();
+      f.latency = out.frame->latency;
       result.frames.push_back(std::move(f));
-    } else {
-      out = nav.hold(sim.time(), T);
     }
-    cmd = control::apply_limits(out.cmd, cmd, sim.dt(), vlim);
     sink.state = out.state;
     sink.planned = out.corridor;
     sink.cmd = cmd;
-    for (auto& e : out.events) {
-      if (e.kind == navigate::NavEventKind::entered_corridor ||
-          (e.kind == navigate::NavEventKind::safe_stop &&
-           out.stop_reason == navigate::StopReason::place_contradicts_plan))
-        result.entries.emplace_back(e.corridor, sim.ground_truth().corridor);
-      result.events.push_back(std::move(e));
-    }
-    // Row ends estimated by the stack (odom frame), mapped into the world through the robot's
-    // true pose at this instant: the error measured is that of the LiDAR estimate relative to
-    // the robot (003 Table II), not the odometry drift accumulated since the start.
-    for (std::size_t k = result.row_ends_world.size(); k < nav.row_ends_odom().size(); ++k)
-      result.row_ends_world.push_back(sim.robot_state().pose * (T.inverse() * nav.row_ends_odom()[k]));
-    result.served = out.served;
+    record(out, stack, sim, result);
     if (out.state == navigate::NavState::done || out.state == navigate::NavState::safe_stop) {
       result.stop_reason = out.stop_reason;
       break;
@@ -257,8 +221,8 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
       setup.progress(sim.time(), static_cast<double>(out.served) / result.order.size());
     }
   }
-  result.final_state = nav.state();
-  result.turns = nav.turns();
+  result.final_state = stack.navigator().state();
+  result.turns = stack.navigator().turns();
   result.sim_time = sim.time();
   result.wall_time = std::chrono::duration<double>(Clock::now() - wall0).count();
   return result;

@@ -34,14 +34,11 @@ void NavigatorConfig::validate() const {
 }
 
 Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
-                     track::RowTracker& tracker, control::PathController& controller,
-                     EndOfRowDetector& end_of_row)
+                     double end_box_near)
     : config_(config),
       order_(std::move(order)),
       changes_(corridor_changes(order_, first_turn)),
-      tracker_(tracker),
-      controller_(controller),
-      end_of_row_(end_of_row) {
+      end_box_near_(end_box_near) {
   config_.validate();
   if (order_.empty()) state_ = NavState::done;
 }
@@ -51,9 +48,8 @@ NavOutput Navigator::finish(NavOutput out) {
   out.stop_reason = reason_;
   out.corridor = leg_ < order_.size() ? order_[leg_] : -1;
   out.served = served_;
-  if (state_ == NavState::done || state_ == NavState::safe_stop) out.cmd = {};
+  if (state_ == NavState::done || state_ == NavState::safe_stop) out.cmd = {}, out.control.reset();
   if (!std::isfinite(out.cmd.v) || !std::isfinite(out.cmd.omega)) out.cmd = {};
-  last_cmd_ = out.cmd;
   return out;
 }
 
@@ -93,9 +89,10 @@ NavOutput Navigator::step(const NavInput& in) {
   return finish(std::move(out));
 }
 
-NavOutput Navigator::hold(double stamp, const core::Pose2& T_odom_base) {
+NavOutput Navigator::hold(double stamp, const core::Pose2& T_odom_base,
+                          const core::Twist2& last_cmd) {
   NavOutput out;
-  out.cmd = last_cmd_;
+  out.cmd = last_cmd;
   switch (state_) {
     case NavState::exiting:
       exiting(T_odom_base, out, stamp);
@@ -190,11 +187,11 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   c.steepness = in.tracking.steepness;
   c.speed_ref = config_.row_speed;
   c.speed = in.twist.v;
-  out.cmd = controller_.compute(c);
+  out.control = c;
   if (in.end_of_row.end_detected && centre_odom_) {
     state_ = NavState::exiting;
     if (!end_arc_) {  // no row end seen: take the detector's distance, else the box's near edge
-      const double ahead = in.end_of_row.distance_to_end.value_or(end_of_row_.config().box_x_min);
+      const double ahead = in.end_of_row.distance_to_end.value_or(end_box_near_);
       end_arc_ = centre_odom_->arc(in.T_odom_base.translation()) + ahead;
     }
     out.events.push_back(

@@ -19,9 +19,8 @@ void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
   const TurnPlan plan = choose_turn(config_.manoeuvre, change.shift, spacing, robot_.turn);
   manoeuvre_ = std::make_unique<HeadlandManoeuvre>(config_.turn, plan, T_odom_turn, change.shift,
                                                    change.side, spacing, config_.exit_distance);
-  tracker_.reset();
-  end_of_row_.reset();
-  controller_.reset();
+  out.reset_tracking = true;
+  out.reset_end_of_row = true;
   state_ = NavState::turning;
   out.events.push_back({stamp, NavEventKind::turn_started, change.to, T.translation(),
                         std::string(core::enum_name(plan.kind)) + " turn " +
@@ -98,7 +97,7 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
     state_ = NavState::in_row;
     // The end-of-row detector saw no rows ahead all through the headland and latches; the new
     // corridor starts with a fresh decision.
-    end_of_row_.reset();
+    out.reset_end_of_row = true;
     last_seen_ = stamp;
     manoeuvre_.reset();
     out.events.push_back(

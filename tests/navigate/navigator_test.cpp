@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include "common/nav_doubles.hpp"
-#include "rownav/track/raw_corridor.hpp"
 
 namespace rownav::navigate {
 namespace {
@@ -22,10 +20,7 @@ NavInput frame(double t, bool rows) {
 }
 
 struct Fixture {
-  track::RawCorridorTracker tracker;
-  test::ProportionalController controller;
-  EndOfRowDetector eor;
-  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left, tracker, controller, eor};
+  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left};
 };
 
 TEST(Navigator, PerceptionLostInARowForMoreThanTimeoutStops) {
@@ -52,7 +47,9 @@ TEST(Navigator, ObstacleInsideStopDistanceStops) {
 TEST(Navigator, EndOfRowLeadsToExitingThenTurning) {
   Fixture f;
   NavInput in = frame(0.0, true);
-  EXPECT_GT(f.nav.step(in).cmd.v, 0.0);
+  const NavOutput first = f.nav.step(in);
+  ASSERT_TRUE(first.control.has_value());  // in a row: a request for the stack's controller
+  EXPECT_GT(first.control->speed_ref, 0.0);
   in = frame(0.1, true);
   in.end_of_row.end_detected = true;
   in.end_of_row.distance_to_end = 1.0;

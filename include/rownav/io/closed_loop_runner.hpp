@@ -1,7 +1,7 @@
 #pragma once
-/// @file closed_loop_runner.hpp A whole mission in the simulator with the full stack closed on
-/// the simulated LiDAR: detection pipeline -> tracker -> end-of-row -> navigator (controller
-/// inside) -> robot. Records what a report needs; deterministic per seed.
+/// @file closed_loop_runner.hpp A whole mission in the simulator with navigate::NavStack closed
+/// on the simulated sensors: the runner only hands NavStack the simulator's samples and the
+/// simulator NavStack's command, and records what a report needs; deterministic per seed.
 #include <Eigen/Core>
 #include <filesystem>
 #include <functional>
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "rownav/control/controller.hpp"
-#include "rownav/localize/localizer.hpp"
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/nav_stack.hpp"
 #include "rownav/navigate/navigator.hpp"
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/robot.hpp"
@@ -22,39 +22,8 @@
 
 namespace rownav::io {
 
-/// Where the navigation stack gets T_odom_base from. Receives every simulator sample (encoders,
-/// IMU, GNSS) as a SimSink; the runner also hands it the true state after each physics step
-/// (for sources that model odometry from the truth, e.g. in ablations).
-class OdometrySource : public sim::SimSink {
- public:
-  virtual void on_physics_step(const sim::RobotState& /*truth*/) {}
-  /// Pose of the base in the odom frame at `stamp` (the latest one), nullopt before any data.
-  virtual std::optional<core::Pose2> T_odom_base(double stamp) const = 0;
-  virtual core::Twist2 twist() const = 0;
-};
-
-/// The robot's own odometry: localize::Localizer (wheel encoders + IMU, + GNSS when the sensors
-/// have it) with the NOMINAL kinematics the firmware assumes (io::localizer_config_for). The
-/// odom frame starts at the start pose.
-class LocalizerOdometry : public OdometrySource {
- public:
-  explicit LocalizerOdometry(const localize::LocalizerConfig& config) : localizer_(config) {}
-  void on_encoders(const core::WheelEncoderSample& s) override { localizer_.add_encoders(s); }
-  void on_imu(const core::ImuSample& s) override { localizer_.add_imu(s); }
-  void on_gnss(const core::GnssFix& s) override { localizer_.add_gnss(s); }
-  std::optional<core::Pose2> T_odom_base(double stamp) const override {
-    return localizer_.T_odom_base(stamp);
-  }
-  core::Twist2 twist() const override { return localizer_.latest().twist; }
-  const localize::Localizer& localizer() const { return localizer_; }
-
- private:
-  localize::Localizer localizer_;
-};
-
 using TrackerFactory = std::function<std::unique_ptr<track::RowTracker>()>;
 using ControllerFactory = std::function<std::unique_ptr<control::PathController>()>;
-using OdometryFactory = std::function<std::unique_ptr<OdometrySource>()>;
 
 /// Everything a closed-loop run needs (files already loaded).
 struct ClosedLoopSetup {
@@ -62,16 +31,13 @@ struct ClosedLoopSetup {
   sim::RobotConfig robot;
   sim::SimConfig sensors;
   navigate::MissionPlan mission;
-  navigate::NavigatorConfig navigator;
-  navigate::EndOfRowConfig end_of_row;
+  /// navigator, end of row and stack settings; robot, limits and localizer are filled from
+  /// `robot` and `sensors` by the runner (nav_stack_robot)
+  navigate::NavStackConfig nav;
   std::string detector = "hough_skew";
   std::filesystem::path detect_config;  ///< empty: detector defaults
   TrackerFactory make_tracker;
   ControllerFactory make_controller;
-  OdometryFactory make_odometry;  ///< empty: LocalizerOdometry(localizer_config_for(robot, sensors))
-  /// Level each 3D sweep by the gravity the IMU measured during it before detection (the base
-  /// rolls with the terrain; localize/gravity_up.hpp).
-  bool level_by_gravity = true;
   double time_limit = 1200.0;     ///< [s] simulated; the run stops with reason `timeout`
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
@@ -125,6 +91,12 @@ struct RunResult {
 /// order lies on `first_turn`'s side. Throws std::invalid_argument for a missing corridor.
 core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& order, int block,
                           navigate::TurnSide first_turn, double lead_in);
+
+/// NavStackConfig::robot, limits and localizer of a simulated robot: its footprint, limits and
+/// the NOMINAL kinematics its firmware assumes (io::localizer_config_for); the stack's sweep
+/// period from the LiDAR rate.
+void nav_stack_robot(navigate::NavStackConfig& nav, const sim::RobotConfig& robot,
+                     const sim::SimConfig& sensors);
 
 /// Runs the mission. Throws std::invalid_argument / InputError for a bad set-up (before
 /// simulating); the run itself never throws.

@@ -1,31 +1,127 @@
 #pragma once
-/// @file nav_stack_config.hpp The navigation settings of one crop: the navigator (mission state
-/// machine, headland turns) and the end-of-row detector, in one YAML file
-/// (config/navigate/<crop>.yaml: `navigator:` and `end_of_row:` sections).
+/// @file nav_stack_config.hpp The settings of navigate::NavStack: the navigator (mission state
+/// machine, headland turns), the end-of-row detector and the stack's own input handling, in one
+/// YAML file (config/navigate/<crop>.yaml: `navigator:`, `end_of_row:` and `stack:` sections).
+/// The robot's geometry, limits and odometry model come from the robot file (not from YAML
+/// here): the adapters fill `robot`, `limits` and `localizer`.
 ///
 /// The end-of-row height band and look-ahead box depend on the canopy (Lan 2021,
 /// 001_b5f4b55a1b95775a.txt eq. 24 gives 0.5-1.3 m, 3-5 m for vines); `rownav run` picks the
 /// crop's file like the detection config (config/detect/<crop>.yaml).
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <utility>
+
+#include "rownav/control/front_obstacle.hpp"
+#include "rownav/control/velocity_limits.hpp"
 #include "rownav/core/config_fields.hpp"
+#include "rownav/localize/localizer.hpp"
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/navigator.hpp"
 
 namespace rownav::navigate {
 
-/// Navigator + end-of-row configuration of one crop. Every default is the member's own.
+/// Where NavStack's T_odom_base comes from.
+enum class OdometryInput : std::uint8_t {
+  wheels_imu,  ///< its own localize::Localizer fed with encoders, IMU (and GNSS)
+  external     ///< poses given with on_odometry (a robot's own odometry, e.g. nav_msgs/Odometry)
+};
+
+/// How far NavStack runs the chain.
+enum class StackMode : std::uint8_t {
+  navigate,  ///< detect -> track -> end of row -> navigator -> controller -> limits
+  track,     ///< detect -> track (open-loop analysis: `rownav track`)
+  detect     ///< detect only (`rownav detect`): no odometry needed
+};
+
+/// NavStack's own settings (input handling between the sensors and the chain).
+struct StackConfig {
+  StackMode mode = StackMode::navigate;              ///< how far the chain runs
+  OdometryInput odometry = OdometryInput::wheels_imu;  ///< pose source
+  /// Level each 3D sweep by the gravity the IMU measured during it (a rolling base shifts a row
+  /// seen at height h by h sin(roll); rownav, BENCHMARK.md issue 4)
+  bool level_by_gravity = true;
+  /// [s] sweep duration for levelling when two successive sweep stamps do not give it
+  /// (10 Hz: OS1, VLP-16 as in Nehme 2021 sec. 5)
+  double sweep_period = 0.1;
+  double imu_history = 1.0;  ///< [s] IMU samples kept for levelling
+  /// external odometry: the yaw rate from the gyro when a sample is fresher than gyro_max_age
+  bool gyro_yaw_rate = true;
+  double gyro_max_age = 0.5;        ///< [s]
+  double odometry_history = 2.0;    ///< [s] external poses kept
+  double max_extrapolation = 0.2;   ///< [s] external pose extrapolated past the newest one
+  double command_period = 0.01;     ///< [s] acceleration-limit step of the first command (100 Hz)
+  double max_frame_dt = 1.0;        ///< [s] controller dt is clamped to this (a gap in frames)
+  /// Obstacle rectangle of the controllers' slow-down (Bertoglio 2023 sec. II-B); its width and
+  /// front x are the robot's (no margin: the corridor's canopy faces are within 0.1 m of a
+  /// robot in a narrow row), an obstacle is >= 3 points after preprocessing (a lone shoot or
+  /// weed blade stalled the demo at zero speed with 1 point and a 0.1 m margin).
+  control::FrontRectConfig front = {.margin = 0.0, .min_points = 3};
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("mode", s.mode);
+    v("odometry", s.odometry);
+    v("level_by_gravity", s.level_by_gravity);
+    v("sweep_period", s.sweep_period);
+    v("imu_history", s.imu_history);
+    v("gyro_yaw_rate", s.gyro_yaw_rate);
+    v("gyro_max_age", s.gyro_max_age);
+    v("odometry_history", s.odometry_history);
+    v("max_extrapolation", s.max_extrapolation);
+    v("command_period", s.command_period);
+    v("max_frame_dt", s.max_frame_dt);
+    v("front", s.front);
+  }
+  void validate() const {
+    core::check_positive(sweep_period, "sweep_period");
+    core::check_positive(imu_history, "imu_history");
+    core::check_positive(gyro_max_age, "gyro_max_age");
+    core::check_positive(odometry_history, "odometry_history");
+    core::check_non_negative(max_extrapolation, "max_extrapolation");
+    core::check_positive(command_period, "command_period");
+    core::check_positive(max_frame_dt, "max_frame_dt");
+    core::validate_nested(front, "front");
+  }
+};
+
+/// Everything NavStack is built from. Every default is the member's own.
 struct NavStackConfig {
   NavigatorConfig navigator;  ///< mission state machine and headland turns
   EndOfRowConfig end_of_row;  ///< when the rows end ahead
+  StackConfig stack;          ///< input handling
+  // From the robot file (io::nav_stack_robot), not from this YAML file:
+  RobotLimits robot;                  ///< footprint and turn ability
+  control::VelocityLimits limits;     ///< applied to every command, as a base controller would
+  localize::LocalizerConfig localizer;  ///< wheel odometry model and EKF noise
 
   template <class S, class V>
   static void fields(S& s, V& v) {
     v("navigator", s.navigator);
     v("end_of_row", s.end_of_row);
+    v("stack", s.stack);
   }
   void validate() const {
     core::validate_nested(navigator, "navigator");
     core::validate_nested(end_of_row, "end_of_row");
+    core::validate_nested(stack, "stack");
+    core::validate_nested(limits, "limits");
   }
 };
 
 }  // namespace rownav::navigate
+
+template <>
+struct rownav::core::EnumNames<rownav::navigate::OdometryInput> {
+  using E = rownav::navigate::OdometryInput;
+  static constexpr std::array<std::pair<E, std::string_view>, 2> values{
+      {{E::wheels_imu, "wheels_imu"}, {E::external, "external"}}};
+};
+
+template <>
+struct rownav::core::EnumNames<rownav::navigate::StackMode> {
+  using E = rownav::navigate::StackMode;
+  static constexpr std::array<std::pair<E, std::string_view>, 3> values{
+      {{E::navigate, "navigate"}, {E::track, "track"}, {E::detect, "detect"}}};
+};

@@ -3,10 +3,10 @@
 /// entering -> in_row ... -> done, or safe_stop with a reason (Bertoglio 2023,
 /// 003_25dc0df51a1e5faf.txt sec. II: in-row, turn and end-row navigation).
 ///
-/// The navigator owns no perception: the caller runs the detector, the tracker and the
-/// end-of-row detector each LiDAR frame and passes their answers with the odometry pose. The
-/// tracker, controller and end-of-row detector are injected (reset after turns; the controller
-/// computes the in-row command).
+/// The navigator owns no perception and no controller: navigate::NavStack runs the detector, the
+/// tracker and the end-of-row detector each LiDAR frame and passes their answers with the
+/// odometry pose; in a row the navigator answers with a control request that the stack's
+/// controller turns into the command, and it asks the stack to reset the perception on a turn.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -133,7 +133,12 @@ struct NavInput {
 
 /// The navigator's answer.
 struct NavOutput {
-  core::Twist2 cmd;
+  core::Twist2 cmd;  ///< the command, unless `control` is set
+  /// In a row: what the path controller is to follow; the caller sets ControlInput::dt and
+  /// obstacle_distance and replaces `cmd` by the controller's answer.
+  std::optional<control::ControlInput> control;
+  bool reset_tracking = false;    ///< a turn started: reset the tracker and the controller
+  bool reset_end_of_row = false;  ///< a new corridor: reset the end-of-row detector
   NavState state = NavState::in_row;
   StopReason stop_reason = StopReason::none;
   std::vector<NavEvent> events;  ///< what happened this step
@@ -145,15 +150,16 @@ struct NavOutput {
 class Navigator {
  public:
   /// `order`: resolved corridor order (resolve_order); the robot starts in order.front().
+  /// `end_box_near` [m]: near edge of the end-of-row box, the row end's distance when the
+  /// detector gives none (EndOfRowConfig::box_x_min).
   Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
-            track::RowTracker& tracker, control::PathController& controller,
-            EndOfRowDetector& end_of_row);
+            double end_box_near = EndOfRowConfig{}.box_x_min);
 
   /// One LiDAR frame.
   NavOutput step(const NavInput& in);
   /// Between frames (physics rate): refreshes odometry-closed parts (rotations, line following)
-  /// with the latest pose; repeats the in-row command. Cheap.
-  NavOutput hold(double stamp, const core::Pose2& T_odom_base);
+  /// with the latest pose; elsewhere (in a row) repeats `last_cmd`, the command last sent. Cheap.
+  NavOutput hold(double stamp, const core::Pose2& T_odom_base, const core::Twist2& last_cmd);
 
   NavState state() const { return state_; }
   StopReason stop_reason() const { return reason_; }
@@ -183,9 +189,7 @@ class Navigator {
   NavigatorConfig config_;
   std::vector<int> order_;
   std::vector<CorridorChange> changes_;
-  track::RowTracker& tracker_;
-  control::PathController& controller_;
-  EndOfRowDetector& end_of_row_;
+  double end_box_near_ = 0.0;
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
@@ -198,7 +202,6 @@ class Navigator {
   std::optional<double> end_arc_;                        // row ends along centre_odom_
   std::unique_ptr<HeadlandManoeuvre> manoeuvre_;
   RobotLimits robot_;
-  core::Twist2 last_cmd_;
   std::vector<Eigen::Vector2d> row_ends_;
   std::optional<core::Line2> entry_seen_;  // target corridor centre seen while entering (odom)
 };

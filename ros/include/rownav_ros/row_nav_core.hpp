@@ -1,22 +1,17 @@
 #pragma once
-/// @file row_nav_core.hpp The node's per-frame processing, without a node handle: ROS messages
-/// in, the command and what to publish out. Wires the stack as io::run_closed_loop does:
-/// DetectionPipeline -> tracker -> end of row -> Navigator (controller inside) -> apply_limits,
-/// with the odometry pose interpolated at the frame stamp.
+/// @file row_nav_core.hpp The node's adapter, without a node handle: ROS messages converted and
+/// handed to navigate::NavStack (the stack `rownav run` measures), its answer returned for
+/// publishing. The robot's nav_msgs/Odometry is the stack's external odometry; the IMU gives
+/// the yaw rate (use_imu) and levels each sweep by gravity.
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "rownav/control/controller.hpp"
-#include "rownav/detect/pipeline.hpp"
-#include "rownav/navigate/end_of_row.hpp"
-#include "rownav/navigate/navigator.hpp"
-#include "rownav/track/row_tracker.hpp"
+#include "rownav/navigate/nav_stack.hpp"
 #include "rownav_ros/conversions.hpp"
 #include "rownav_ros/node_config.hpp"
-#include "rownav_ros/odom_buffer.hpp"
 
 namespace rownav::ros_bridge {
 
@@ -56,30 +51,23 @@ class RowNavCore {
   /// Stores the pose; once frames are processed, returns the navigator's command between frames
   /// (odometry-closed turns and line following), limited. nullopt: nothing to send.
   std::optional<core::Twist2> on_odom(const nav_msgs::Odometry& msg);
-  /// Gyro yaw rate (used when NodeConfig::use_imu).
+  /// IMU: gravity levelling of sweeps, gyro yaw rate (NodeConfig::use_imu).
   void on_imu(const sensor_msgs::Imu& msg);
 
   const StackSetup& setup() const { return setup_; }
-  const navigate::Navigator& navigator() const { return *navigator_; }
+  const navigate::Navigator& navigator() const { return stack_->navigator(); }
+  const navigate::NavStack& stack() const { return *stack_; }
   /// Points handed to the detector in the last frame (base frame).
   const std::vector<Eigen::Vector2f>& last_points() const;
 
  private:
-  FrameResult step(const core::RowObservation& obs);
+  FrameResult frame(double stamp);
   FrameResult fail(double stamp, std::string why);
-  core::Twist2 limit(const core::Twist2& cmd, double stamp);
 
   StackSetup setup_;
-  std::unique_ptr<detect::DetectionPipeline> pipeline_;
-  std::unique_ptr<track::RowTracker> tracker_;
-  std::unique_ptr<control::PathController> controller_;
-  std::unique_ptr<navigate::EndOfRowDetector> end_of_row_;
-  std::unique_ptr<navigate::Navigator> navigator_;
-  OdomBuffer odom_;
+  std::unique_ptr<navigate::NavStack> stack_;
   bool mount_set_ = false, started_ = false;
-  std::optional<core::ImuSample> imu_;
-  core::Twist2 last_cmd_;
-  std::optional<double> last_cmd_stamp_;
+  std::optional<double> last_odom_stamp_;
 };
 
 }  // namespace rownav::ros_bridge

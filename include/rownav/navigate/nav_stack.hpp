@@ -1,0 +1,130 @@
+#pragma once
+/// @file nav_stack.hpp The one per-frame entry point of rownav: raw stamped sensor samples in,
+/// the command to send, the mission state, the deviations and the events out.
+///
+/// NavStack owns the chain sensor samples -> localize (wheel odometry + IMU EKF, or an external
+/// odometry) -> gravity levelling -> detection pipeline -> tracker -> end of row -> navigator ->
+/// controller (dt, obstacle distance) -> velocity limits. The simulator runner, the ROS node,
+/// `rownav track`, `rownav detect` and the test harnesses only convert their input and call it,
+/// the way kiss-icp's ROS wrapper only calls its pipeline class.
+///
+/// Samples may come in any order: one older than the newest of its stream, a duplicate or a
+/// non-finite stamp is dropped and counted (stats()), never a throw.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "rownav/control/controller.hpp"
+#include "rownav/core/point_cloud.hpp"
+#include "rownav/core/scan2d.hpp"
+#include "rownav/core/sensor_samples.hpp"
+#include "rownav/detect/pipeline.hpp"
+#include "rownav/localize/localizer.hpp"
+#include "rownav/localize/pose_history.hpp"
+#include "rownav/navigate/nav_stack_config.hpp"
+#include "rownav/navigate/navigator.hpp"
+#include "rownav/track/row_tracker.hpp"
+
+namespace rownav::navigate {
+
+/// The replaceable algorithms, built by name by the adapters (io registries).
+struct NavStackParts {
+  std::unique_ptr<detect::DetectionPipeline> pipeline;
+  std::unique_ptr<track::RowTracker> tracker;         ///< null in StackMode::detect
+  std::unique_ptr<control::PathController> controller;  ///< null unless StackMode::navigate
+};
+
+/// What one LiDAR frame gave.
+struct FrameReport {
+  double stamp = 0.0;                      ///< [s] frame (sweep start) stamp
+  core::RowObservation observation;        ///< detector output (base frame)
+  std::optional<track::RowTracking> tracking;  ///< nullopt: no odometry at the frame, or detect mode
+  EndOfRowResult end_of_row;
+  bool levelled = false;  ///< the sweep was levelled by the IMU's gravity
+  double latency = 0.0;   ///< [s] wall time of the frame through the chain
+};
+
+/// The answer of command().
+struct NavCommand {
+  double stamp = 0.0;
+  core::Twist2 cmd;  ///< to send (limited; zero in done / safe_stop or without odometry)
+  NavState state = NavState::in_row;
+  StopReason stop_reason = StopReason::none;
+  int corridor = -1;  ///< corridor of the plan being served / entered
+  int served = 0;
+  std::vector<NavEvent> events;       ///< what happened in this call
+  std::optional<FrameReport> frame;   ///< the LiDAR frame processed in this call, if any
+};
+
+/// Inputs dropped (late, duplicate, non-finite) and frames not processed, per stream.
+struct NavStackStats {
+  std::uint64_t encoders = 0, imu = 0, gnss = 0, odometry = 0, frames = 0;  ///< accepted
+  std::uint64_t dropped_encoders = 0, dropped_imu = 0, dropped_gnss = 0, dropped_odometry = 0;
+  std::uint64_t dropped_frames = 0;   ///< older than (or as old as) the last frame
+  std::uint64_t replaced_frames = 0;  ///< a newer frame came before command() processed it
+  std::uint64_t late_commands = 0;    ///< command() with a stamp older than the previous one
+};
+
+/// The navigation stack. Not thread-safe (feed it from one thread); never throws after
+/// construction.
+class NavStack {
+ public:
+  /// Validates `config` and the parts (std::invalid_argument naming the field); `order` is the
+  /// resolved corridor order (resolve_order), the robot starting in order.front().
+  NavStack(const NavStackConfig& config, NavStackParts parts, std::vector<int> order = {0},
+           TurnSide first_turn = TurnSide::left);
+  ~NavStack();
+  NavStack(const NavStack&) = delete;
+  NavStack& operator=(const NavStack&) = delete;
+
+  void on_encoders(const core::WheelEncoderSample& s);
+  void on_imu(const core::ImuSample& s);
+  void on_gnss(const core::GnssFix& s);
+  /// A pose of an external odometry (StackConfig::odometry = external).
+  void on_odometry(const localize::StampedPose& s);
+  /// A 3D sweep in the LiDAR frame (per-point times); processed by the next command().
+  void on_cloud(core::PointCloud cloud);
+  /// A 2D scan in the LiDAR frame; processed by the next command().
+  void on_scan(core::Scan2D scan);
+  /// The command at `stamp`: processes the pending frame if there is one, else refreshes the
+  /// odometry-closed manoeuvres between frames.
+  NavCommand command(double stamp);
+
+  /// T_odom_base at `stamp` from the configured source (nullopt before any odometry).
+  std::optional<core::Pose2> T_odom_base(double stamp) const;
+  /// Body velocity estimate (zero before any odometry).
+  core::Twist2 twist() const;
+
+  const Navigator& navigator() const { return *navigator_; }
+  const detect::DetectionPipeline& pipeline() const { return *parts_.pipeline; }
+  const localize::Localizer& localizer() const { return localizer_; }
+  const NavStackStats& stats() const { return stats_; }
+  const NavStackConfig& config() const { return config_; }
+
+ private:
+  struct Pending;
+  FrameReport process_frame(Pending& frame, const std::optional<core::Pose2>& T);
+  core::RowObservation detect_frame(Pending& frame, bool& levelled);
+  NavOutput navigate_frame(double stamp, const core::Pose2& T, FrameReport& report);
+  void apply(const NavOutput& out);
+  core::Twist2 limit(const core::Twist2& cmd, double stamp);
+
+  NavStackConfig config_;
+  NavStackParts parts_;
+  std::unique_ptr<EndOfRowDetector> end_of_row_;
+  std::unique_ptr<Navigator> navigator_;
+  localize::Localizer localizer_;
+  localize::PoseHistory external_;
+  std::deque<core::ImuSample> imu_;
+  std::unique_ptr<Pending> pending_;
+  std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;
+  double sweep_period_ = 0.0;
+  double last_encoder_ = -1e300, last_gnss_ = -1e300;
+  core::Twist2 nav_cmd_, sent_cmd_;  // navigator's last command, the last limited command
+  NavStackStats stats_;
+};
+
+}  // namespace rownav::navigate

@@ -1,0 +1,86 @@
+// A recording played into NavStack in arrival order (io/recording_replay.hpp).
+#include "rownav/io/recording_replay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace rownav::io {
+
+namespace {
+
+constexpr double kNever = std::numeric_limits<double>::infinity();
+
+/// The recorded streams, each consumed in stamp order up to a time.
+class Streams {
+ public:
+  Streams(const Recording& rec, navigate::NavStack& stack, bool truth)
+      : rec_(rec), stack_(stack), truth_(truth) {}
+
+  /// Feeds every sample stamped at or before t.
+  void feed_until(double t) {
+    while (true) {
+      const double te = truth_ || ie_ >= rec_.encoders.size() ? kNever : rec_.encoders[ie_].stamp;
+      const double ti = ii_ < rec_.imu.size() ? rec_.imu[ii_].stamp : kNever;
+      const double tg = truth_ || ig_ >= rec_.gnss.size() ? kNever : rec_.gnss[ig_].stamp;
+      const double tt =
+          !truth_ || it_ >= rec_.ground_truth.size() ? kNever : rec_.ground_truth[it_].stamp;
+      const double next = std::min({te, ti, tg, tt});
+      if (!(next <= t)) return;
+      if (te == next)
+        stack_.on_encoders(rec_.encoders[ie_++]);
+      else if (ti == next)
+        stack_.on_imu(rec_.imu[ii_++]);
+      else if (tg == next)
+        stack_.on_gnss(rec_.gnss[ig_++]);
+      else
+        on_truth(rec_.ground_truth[it_++]);
+    }
+  }
+
+ private:
+  void on_truth(const sim::GroundTruth& g) {
+    stack_.on_odometry({g.stamp, g.T_world_base, g.twist});
+  }
+
+  const Recording& rec_;
+  navigate::NavStack& stack_;
+  bool truth_;
+  std::size_t ie_ = 0, ii_ = 0, ig_ = 0, it_ = 0;
+};
+
+}  // namespace
+
+double sweep_period(const Recording& rec, double fallback) {
+  std::vector<double> d;
+  for (std::size_t i = 1; i < rec.cloud_stamps.size(); ++i)
+    d.push_back(rec.cloud_stamps[i] - rec.cloud_stamps[i - 1]);
+  for (std::size_t i = 1; i < rec.scans.size(); ++i)
+    d.push_back(rec.scans[i].stamp - rec.scans[i - 1].stamp);
+  if (d.empty()) return fallback;
+  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+  const double p = d[d.size() / 2];
+  return p > 0.0 && std::isfinite(p) ? p : fallback;
+}
+
+void replay_recording(const Recording& rec, navigate::NavStack& stack, const ReplayOptions& options,
+                      const std::function<void(const navigate::NavCommand&)>& on_frame) {
+  const double period = sweep_period(rec, stack.config().stack.sweep_period);
+  Streams streams(rec, stack, options.truth_odometry);
+  std::size_t ic = 0, is = 0;
+  while (ic < rec.cloud_count() || is < rec.scans.size()) {
+    const double tc = ic < rec.cloud_count() ? rec.cloud_stamps[ic] : kNever;
+    const double ts = is < rec.scans.size() ? rec.scans[is].stamp : kNever;
+    const double arrival = std::min(tc, ts) + period;  // the sweep is complete then
+    streams.feed_until(arrival);
+    if (tc <= ts)
+      stack.on_cloud(rec.cloud(ic++));
+    else
+      stack.on_scan(rec.scans[is++]);
+    const navigate::NavCommand c = stack.command(arrival);
+    if (c.frame) on_frame(c);
+  }
+}
+
+}  // namespace rownav::io

@@ -1,0 +1,243 @@
+// NavStack: the one per-frame path from raw sensor samples to the command (navigate/nav_stack.hpp).
+#include "rownav/navigate/nav_stack.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <variant>
+
+#include "rownav/control/front_obstacle.hpp"
+#include "rownav/localize/gravity_up.hpp"
+
+namespace rownav::navigate {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool terminal(NavState s) {
+  return s == NavState::done || s == NavState::safe_stop;
+}
+
+bool finite(const core::Pose2& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+/// Accepts a sample of a stream whose newest stamp is `last` (updated); counts a drop otherwise.
+bool accept(double stamp, double& last, std::uint64_t& accepted, std::uint64_t& dropped) {
+  if (!std::isfinite(stamp) || stamp <= last) return ++dropped, false;
+  last = stamp;
+  ++accepted;
+  return true;
+}
+
+}  // namespace
+
+struct NavStack::Pending {
+  std::variant<core::PointCloud, core::Scan2D> data;
+  double stamp() const {
+    return std::visit([](const auto& d) { return d.stamp; }, data);
+  }
+};
+
+NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vector<int> order,
+                   TurnSide first_turn)
+    : config_(config),
+      parts_(std::move(parts)),
+      localizer_(config.localizer),
+      external_(config.stack.odometry_history, config.stack.max_extrapolation) {
+  config_.validate();
+  const StackMode mode = config_.stack.mode;
+  core::check(parts_.pipeline != nullptr, "pipeline", "missing");
+  core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
+  core::check(mode != StackMode::navigate || parts_.controller != nullptr, "controller",
+              "missing");
+  end_of_row_ = std::make_unique<EndOfRowDetector>(config_.end_of_row);
+  navigator_ = std::make_unique<Navigator>(config_.navigator, std::move(order), first_turn,
+                                           config_.end_of_row.box_x_min);
+  // The front rectangle is the robot's own (Bertoglio 2023 sec. II-B).
+  config_.stack.front.robot_width = config_.robot.width;
+  config_.stack.front.front_x = config_.robot.base_to_front;
+  sweep_period_ = config_.stack.sweep_period;
+}
+
+NavStack::~NavStack() = default;
+
+void NavStack::on_encoders(const core::WheelEncoderSample& s) {
+  if (accept(s.stamp, last_encoder_, stats_.encoders, stats_.dropped_encoders))
+    localizer_.add_encoders(s);
+}
+
+void NavStack::on_imu(const core::ImuSample& s) {
+  const double last = imu_.empty() ? -1e300 : imu_.back().stamp;
+  double newest = last;
+  if (!accept(s.stamp, newest, stats_.imu, stats_.dropped_imu)) return;
+  localizer_.add_imu(s);
+  imu_.push_back(s);  // the last imu_history seconds, to level each sweep by gravity
+  while (!imu_.empty() && imu_.front().stamp < s.stamp - config_.stack.imu_history)
+    imu_.pop_front();
+}
+
+void NavStack::on_gnss(const core::GnssFix& s) {
+  if (accept(s.stamp, last_gnss_, stats_.gnss, stats_.dropped_gnss)) localizer_.add_gnss(s);
+}
+
+void NavStack::on_odometry(const localize::StampedPose& s) {
+  if (external_.push(s))
+    ++stats_.odometry;
+  else
+    ++stats_.dropped_odometry;
+}
+
+void NavStack::on_cloud(core::PointCloud cloud) {
+  const double t = cloud.stamp;
+  if (!std::isfinite(t) || (last_frame_stamp_ && t <= *last_frame_stamp_) ||
+      (pending_ && t <= pending_->stamp()))
+    return void(++stats_.dropped_frames);
+  // The sweep period from successive sweeps (for levelling over the whole sweep).
+  if (last_cloud_stamp_ && t - *last_cloud_stamp_ > 0.0 &&
+      t - *last_cloud_stamp_ <= config_.stack.max_frame_dt)
+    sweep_period_ = t - *last_cloud_stamp_;
+  last_cloud_stamp_ = t;
+  if (pending_) ++stats_.replaced_frames;
+  pending_ = std::make_unique<Pending>(Pending{std::move(cloud)});
+}
+
+void NavStack::on_scan(core::Scan2D scan) {
+  const double t = scan.stamp;
+  if (!std::isfinite(t) || (last_frame_stamp_ && t <= *last_frame_stamp_) ||
+      (pending_ && t <= pending_->stamp()))
+    return void(++stats_.dropped_frames);
+  if (pending_) ++stats_.replaced_frames;
+  pending_ = std::make_unique<Pending>(Pending{std::move(scan)});
+}
+
+std::optional<core::Pose2> NavStack::T_odom_base(double stamp) const {
+  if (config_.stack.odometry == OdometryInput::external) return external_.at(stamp);
+  return localizer_.T_odom_base(stamp);
+}
+
+core::Twist2 NavStack::twist() const {
+  if (config_.stack.odometry == OdometryInput::wheels_imu) return localizer_.latest().twist;
+  const auto latest = external_.latest();
+  if (!latest) return {};
+  core::Twist2 w = latest->twist;
+  // A robot's odometry often integrates wheel yaw rate only; the gyro is better (Lan 2021 2.1).
+  if (config_.stack.gyro_yaw_rate && !imu_.empty() &&
+      std::abs(imu_.back().stamp - latest->stamp) < config_.stack.gyro_max_age &&
+      std::isfinite(imu_.back().angular_velocity.z()))
+    w.omega = imu_.back().angular_velocity.z();
+  return w;
+}
+
+core::RowObservation NavStack::detect_frame(Pending& frame, bool& levelled) {
+  auto& pipeline = *parts_.pipeline;
+  if (auto* scan = std::get_if<core::Scan2D>(&frame.data)) return pipeline.process(*scan);
+  const auto& cloud = std::get<core::PointCloud>(frame.data);
+  if (config_.stack.level_by_gravity) {
+    const std::vector<core::ImuSample> imu(imu_.begin(), imu_.end());
+    const double t0 = cloud.stamp;
+    if (const auto up = localize::gravity_up(imu, t0, t0 + sweep_period_, twist().v)) {
+      levelled = true;
+      return pipeline.process(cloud, *up);
+    }
+  }
+  return pipeline.process(cloud);
+}
+
+FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Pose2>& T) {
+  FrameReport r;
+  r.stamp = frame.stamp();
+  r.observation = detect_frame(frame, r.levelled);
+  if (config_.stack.mode == StackMode::detect) return r;
+  // The frame is stamped at the start of the sweep: the tracker gets the pose of that instant.
+  const auto T_frame = T_odom_base(r.stamp);
+  if (!T_frame && !T) return r;  // no odometry yet: nothing to track against
+  r.tracking = parts_.tracker->update(r.observation, T_frame ? *T_frame : *T);
+  if (config_.stack.mode == StackMode::track) return r;
+  const auto& p = *parts_.pipeline;
+  r.end_of_row = end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking);
+  return r;
+}
+
+NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameReport& report) {
+  NavInput in;
+  in.stamp = stamp;
+  in.T_odom_base = T;
+  in.twist = twist();
+  in.observation = report.observation;
+  in.tracking = *report.tracking;
+  in.end_of_row = report.end_of_row;
+  in.points_base = parts_.pipeline->last_points();
+  in.robot = config_.robot;
+  NavOutput out = navigator_->step(in);
+  if (out.control) {
+    control::ControlInput c = *out.control;
+    // The controllers integrate over the time since the previous frame (Malavazi 2018 2.3.5).
+    const double dt = last_frame_stamp_ ? report.stamp - *last_frame_stamp_ : sweep_period_;
+    c.dt = std::clamp(dt, 1e-3, config_.stack.max_frame_dt);
+    c.obstacle_distance = control::front_obstacle_distance(in.points_base, config_.stack.front);
+    out.cmd = parts_.controller->compute(c);
+    if (!std::isfinite(out.cmd.v) || !std::isfinite(out.cmd.omega)) out.cmd = {};
+  }
+  return out;
+}
+
+void NavStack::apply(const NavOutput& out) {
+  if (out.reset_tracking) {
+    parts_.tracker->reset();
+    parts_.controller->reset();
+  }
+  if (out.reset_end_of_row) end_of_row_->reset();
+}
+
+core::Twist2 NavStack::limit(const core::Twist2& cmd, double stamp) {
+  const double dt =
+      last_command_stamp_ ? stamp - *last_command_stamp_ : config_.stack.command_period;
+  sent_cmd_ = control::apply_limits(cmd, sent_cmd_, dt, config_.limits);
+  return sent_cmd_;
+}
+
+NavCommand NavStack::command(double stamp) {
+  NavCommand c;
+  c.stamp = stamp;
+  if (!std::isfinite(stamp) || (last_command_stamp_ && stamp < *last_command_stamp_)) {
+    ++stats_.late_commands;  // answered with the last command, nothing advances
+    c.cmd = sent_cmd_;
+    c.state = navigator_->state();
+    c.stop_reason = navigator_->stop_reason();
+    return c;
+  }
+  const std::optional<core::Pose2> T = T_odom_base(stamp);
+  NavOutput out;
+  if (pending_) {
+    const auto t0 = Clock::now();
+    std::unique_ptr<Pending> frame = std::move(pending_);
+    FrameReport report = process_frame(*frame, T);
+    ++stats_.frames;
+    if (config_.stack.mode == StackMode::navigate && report.tracking && T && finite(*T))
+      out = navigate_frame(stamp, *T, report);
+    else
+      out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
+    last_frame_stamp_ = report.stamp;
+    report.latency = std::chrono::duration<double>(Clock::now() - t0).count();
+    c.frame = std::move(report);
+  } else {
+    out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
+  }
+  if (config_.stack.mode != StackMode::navigate) out.cmd = {};
+  if (config_.stack.mode == StackMode::navigate) apply(out);
+  if (!T || terminal(out.state)) out.cmd = {};  // never drive without a pose
+  nav_cmd_ = out.cmd;
+  c.cmd = limit(out.cmd, stamp);
+  last_command_stamp_ = stamp;
+  c.state = out.state;
+  c.stop_reason = out.stop_reason;
+  c.corridor = out.corridor;
+  c.served = out.served;
+  c.events = std::move(out.events);
+  return c;
+}
+
+}  // namespace rownav::navigate

@@ -1,0 +1,174 @@
+// navigate::NavStack: raw stamped samples in, the command out; one code path for every adapter.
+#include "rownav/navigate/nav_stack.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "common/nav_doubles.hpp"
+#include "common/synthetic_rows.hpp"
+#include "rownav/io/controller_registry.hpp"
+#include "rownav/io/detector_registry.hpp"
+#include "rownav/track/raw_corridor.hpp"
+
+namespace rownav::navigate {
+namespace {
+
+/// A 270 deg planar scan of `points` (base = LiDAR frame): the nearest return per beam.
+core::Scan2D scan_of(const std::vector<Eigen::Vector2f>& points, double stamp) {
+  core::Scan2D s;
+  s.stamp = stamp;
+  s.angle_min = -0.75 * std::numbers::pi;
+  s.angle_increment = 0.25 * std::numbers::pi / 180.0;
+  s.range_min = 0.05;
+  s.range_max = 20.0;
+  s.ranges.assign(1081, std::numeric_limits<float>::infinity());
+  for (const auto& p : points) {
+    const long i = std::lround((std::atan2(p.y(), p.x()) - s.angle_min) / s.angle_increment);
+    if (i < 0 || i >= 1081) continue;
+    auto& r = s.ranges[static_cast<std::size_t>(i)];
+    r = std::min(r, p.norm());
+  }
+  return s;
+}
+
+/// Two corridors of rows 1.8 m apart, robot centred; optional obstacle points ahead.
+std::vector<Eigen::Vector2f> corridor_points(std::uint64_t seed, double obstacle_x = -1.0) {
+  test::SyntheticRows rows;
+  rows.rows = 2;
+  rows.seed = seed;
+  auto pts = test::make_rows(rows).points;
+  for (int i = 0; obstacle_x > 0.0 && i < 30; ++i)
+    pts.emplace_back(static_cast<float>(obstacle_x), static_cast<float>(-0.15 + 0.01 * i));
+  return pts;
+}
+
+NavStack make_stack(StackMode mode = StackMode::navigate) {
+  NavStackConfig c;
+  c.stack.mode = mode;
+  NavStackParts parts;
+  parts.pipeline = std::make_unique<detect::DetectionPipeline>(io::make_pipeline("parallel_lines", ""));
+  if (mode != StackMode::detect) parts.tracker = std::make_unique<track::RawCorridorTracker>();
+  // Stanley as shipped: its speed comes down with the front obstacle distance (003 sec. II-B).
+  if (mode == StackMode::navigate) parts.controller = io::make_controller("stanley", "");
+  return NavStack(c, std::move(parts), {0, 1}, TurnSide::left);
+}
+
+/// Drives 2 s: encoders of a robot moving at `v` (ticks of the default odometry) at 50 Hz, a
+/// scan at 25 Hz, a command at 100 Hz. Returns every command.
+std::vector<NavCommand> drive(NavStack& s, double v, bool encoders = true, double obstacle_x = -1) {
+  const localize::WheelOdometryConfig w;
+  const double ticks_per_m = w.ticks_per_rev / (2.0 * std::numbers::pi * w.wheel_radius);
+  std::vector<NavCommand> out;
+  for (int k = 1; k <= 200; ++k) {
+    const double t = 0.01 * k;
+    if (encoders && k % 2 == 0) {
+      const auto ticks = static_cast<std::int64_t>(std::llround(v * t * ticks_per_m));
+      s.on_encoders({t, ticks, ticks, 0.0});
+    }
+    if (k % 4 == 0) s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k), obstacle_x), t - 0.04));
+    out.push_back(s.command(t));
+  }
+  return out;
+}
+
+TEST(NavStack, TurnsRawSamplesIntoTrackedRowsAndACommand) {
+  NavStack s = make_stack();
+  const auto cmds = drive(s, 0.5);
+  int frames = 0;
+  for (const auto& c : cmds)
+    if (c.frame) {
+      ++frames;
+      ASSERT_TRUE(c.frame->tracking.has_value()) << c.stamp;
+      EXPECT_NE(c.frame->observation.status, core::DetectionStatus::no_rows) << c.stamp;
+    }
+  EXPECT_EQ(frames, 50);
+  EXPECT_EQ(cmds.back().state, NavState::in_row);
+  EXPECT_GT(cmds.back().cmd.v, 0.1);
+  EXPECT_LT(std::abs(cmds.back().frame ? cmds.back().frame->tracking->lateral_error : 0.0), 0.1);
+}
+
+TEST(NavStack, TheSameSamplesGiveBitIdenticalCommands) {
+  NavStack a = make_stack(), b = make_stack();
+  const auto ca = drive(a, 0.5), cb = drive(b, 0.5);
+  ASSERT_EQ(ca.size(), cb.size());
+  for (std::size_t i = 0; i < ca.size(); ++i) {
+    EXPECT_EQ(ca[i].cmd.v, cb[i].cmd.v) << i;
+    EXPECT_EQ(ca[i].cmd.omega, cb[i].cmd.omega) << i;
+  }
+}
+
+TEST(NavStack, NeverCommandsMotionWithoutOdometry) {
+  NavStack s = make_stack();
+  for (const auto& c : drive(s, 0.5, false)) {
+    EXPECT_EQ(c.cmd.v, 0.0) << c.stamp;
+    EXPECT_EQ(c.cmd.omega, 0.0) << c.stamp;
+    if (c.frame) {
+      EXPECT_FALSE(c.frame->tracking.has_value());
+    }
+  }
+}
+
+TEST(NavStack, LateDuplicateAndNonFiniteSamplesAreDroppedAndCounted) {
+  NavStack s = make_stack();
+  drive(s, 0.5);
+  const NavStackStats before = s.stats();
+  s.on_encoders({1.0, 0, 0, 0.0});                              // older than the newest
+  s.on_encoders({std::nan(""), 0, 0, 0.0});                     // not a time
+  core::ImuSample imu;
+  imu.stamp = 2.0;
+  s.on_imu(imu);
+  imu.stamp = 1.9;
+  s.on_imu(imu);                                                // older than the newest
+  s.on_scan(scan_of(corridor_points(1), 1.0));                  // older than the last frame
+  s.on_scan(scan_of(corridor_points(1), 1.96));                 // the last frame again
+  const NavCommand late = s.command(1.5);                       // older than the last command
+  EXPECT_EQ(s.stats().dropped_encoders, before.dropped_encoders + 2);
+  EXPECT_EQ(s.stats().dropped_imu, before.dropped_imu + 1);
+  EXPECT_EQ(s.stats().imu, before.imu + 1);
+  EXPECT_EQ(s.stats().dropped_frames, before.dropped_frames + 2);
+  EXPECT_EQ(s.stats().late_commands, before.late_commands + 1);
+  EXPECT_FALSE(late.frame.has_value());
+  EXPECT_EQ(s.command(2.01).state, NavState::in_row);  // and the stack goes on
+}
+
+TEST(NavStack, AnObstacleAheadSlowsTheControllerThroughTheFrontRectangle) {
+  NavStack clear = make_stack(), blocked = make_stack();
+  const double front = NavStackConfig{}.robot.base_to_front;
+  const auto c = drive(clear, 0.5), b = drive(blocked, 0.5, true, front + 1.0);
+  EXPECT_EQ(b.back().state, NavState::in_row);  // 1 m ahead: slower, not a safe stop
+  EXPECT_LT(b.back().cmd.v, 0.6 * c.back().cmd.v);
+}
+
+TEST(NavStack, DetectModeNeedsNoOdometryAndTrackModeNoController) {
+  NavStack d = make_stack(StackMode::detect);
+  int frames = 0;
+  for (const auto& c : drive(d, 0.5, false))
+    if (c.frame) {
+      ++frames;
+      EXPECT_EQ(c.frame->observation.status, core::DetectionStatus::ok);
+      EXPECT_EQ(c.cmd.v, 0.0);
+    }
+  EXPECT_EQ(frames, 50);
+  NavStack t = make_stack(StackMode::track);
+  const auto cmds = drive(t, 0.5);
+  EXPECT_EQ(cmds.back().cmd.v, 0.0);
+  ASSERT_TRUE(cmds[199].frame && cmds[199].frame->tracking);
+  EXPECT_EQ(cmds[199].frame->tracking->status, track::TrackStatus::tracking);
+}
+
+TEST(NavStack, AMissingPartIsAConstructionError) {
+  NavStackParts parts;
+  EXPECT_THROW(NavStack(NavStackConfig{}, std::move(parts)), std::invalid_argument);
+  NavStackConfig bad;
+  bad.stack.sweep_period = 0.0;
+  NavStackParts p2;
+  p2.pipeline = std::make_unique<detect::DetectionPipeline>(io::make_pipeline("parallel_lines", ""));
+  p2.tracker = std::make_unique<track::RawCorridorTracker>();
+  p2.controller = std::make_unique<test::ProportionalController>();
+  EXPECT_THROW(NavStack(bad, std::move(p2)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rownav::navigate
