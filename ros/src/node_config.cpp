@@ -1,6 +1,8 @@
 // The node's settings and the stack's files.
 #include "rownav_ros/node_config.hpp"
 
+#include "rownav/io/closed_loop_runner.hpp"
+
 #include <algorithm>
 
 #include "rownav/io/mission_io.hpp"
@@ -46,16 +48,11 @@ StackSetup load_stack(const NodeConfig& node) {
   s.order = navigate::resolve_order(s.mission, corridor_count_for(node, s.mission));
   s.navigator = load_or_default<navigate::NavigatorConfig>(node.nav_config);
   s.end_of_row = load_or_default<navigate::EndOfRowConfig>(node.end_of_row_config);
-  const auto robot = load_or_default<sim::RobotConfig>(node.robot);
-  s.robot.width = robot.width;
-  s.robot.base_to_front = robot.base_to_front;
-  s.robot.turn = {robot.can_turn_in_place(), robot.min_turn_radius()};
-  s.limits.max_speed = robot.max_speed;
-  s.limits.max_reverse_speed = robot.max_reverse_speed;
-  s.limits.max_yaw_rate = robot.max_yaw_rate;
-  s.limits.max_accel = robot.max_accel;
-  s.limits.max_yaw_accel = robot.max_yaw_accel;
-  s.limits.min_turn_radius = robot.min_turn_radius();
+  // Footprint and limits exactly as `rownav run` derives them from the same robot file.
+  navigate::NavStackConfig stack;
+  io::nav_stack_robot(stack, load_or_default<sim::RobotConfig>(node.robot), sim::SimConfig{});
+  s.robot = stack.robot;
+  s.limits = stack.limits;
   s.limits.validate();
   return s;
 }
