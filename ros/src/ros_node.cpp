@@ -49,7 +49,8 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   else
     frame_sub_ = nh_.subscribe("scan", 2, &RosNode::on_scan, this);
   odom_sub_ = nh_.subscribe("odom", 50, &RosNode::on_odom, this);
-  if (c.use_imu) imu_sub_ = nh_.subscribe("imu", 200, &RosNode::on_imu, this);
+  // Always: the IMU levels each sweep by gravity; its yaw rate is used only with ~use_imu.
+  imu_sub_ = nh_.subscribe("imu", 200, &RosNode::on_imu, this);
   enable_sub_ = pnh_.subscribe("enable", 1, &RosNode::on_enable, this);
   ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s",
            c.input.c_str(), c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
