@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,8 +17,8 @@
 
 #include "rownav/core/angle.hpp"
 #include "rownav/io/detector_registry.hpp"
+#include "rownav/navigate/nav_stack.hpp"
 #include "rownav/io/localize_setup.hpp"
-#include "rownav/localize/gravity_up.hpp"
 #include "rownav/localize/localizer.hpp"
 #include "rownav/io/tracker_registry.hpp"
 #include "rownav/sim/field_config.hpp"
@@ -114,14 +115,12 @@ inline OpenLoopRecording simulate(const OpenLoopScenario& s) {
   return rec;
 }
 
-/// T_odom_base at a stamp (nullopt: unknown).
-using OdometrySource = std::function<std::optional<core::Pose2>(double)>;
-
-/// Ground-truth poses, interpolated, with an optional drift: every increment's translation is
-/// scaled by (1 + scale_error) and its rotation grows by yaw_drift * dt.
-inline OdometrySource truth_odometry(const std::vector<sim::GroundTruth>& gt, double scale_error,
-                                     double yaw_drift_rad_s) {
-  std::vector<core::StampedPose2> odom;
+/// Ground-truth poses with an optional drift, as an external odometry: every increment's
+/// translation is scaled by (1 + scale_error) and its rotation grows by yaw_drift * dt.
+inline std::vector<localize::StampedPose> drifted_truth(const std::vector<sim::GroundTruth>& gt,
+                                                        double scale_error,
+                                                        double yaw_drift_rad_s) {
+  std::vector<localize::StampedPose> odom;
   core::Pose2 T;
   for (std::size_t i = 0; i < gt.size(); ++i) {
     if (i == 0) {
@@ -132,43 +131,39 @@ inline OdometrySource truth_odometry(const std::vector<sim::GroundTruth>& gt, do
               step.theta + yaw_drift_rad_s * (gt[i].stamp - gt[i - 1].stamp)};
       T = T * step;
     }
-    odom.push_back({gt[i].stamp, T});
+    odom.push_back({gt[i].stamp, T, gt[i].twist});
   }
-  return [odom](double t) -> std::optional<core::Pose2> {
-    const auto it =
-        std::lower_bound(odom.begin(), odom.end(), t,
-                         [](const core::StampedPose2& p, double s) { return p.stamp < s; });
-    if (it == odom.end()) return std::nullopt;
-    if (it == odom.begin() || std::abs(it->stamp - t) < 1e-9) return it->pose;
-    const auto& a = *(it - 1);
-    return core::interpolate(a.pose, it->pose, (t - a.stamp) / (it->stamp - a.stamp));
-  };
+  return odom;
 }
 
-/// The wheel + IMU Localizer fed with the recorded samples in time order up to a time: a sweep
-/// stamped at t is complete (emitted) at t + sweep_period, when a live robot has every sample up
-/// to then; T_odom_base(t) then interpolates inside the history.
-class LocalizerReplay {
+/// Feeds a NavStack the recorded samples in time order up to a time: a sweep stamped at t is
+/// complete (emitted) at t + sweep_period, when a live robot has every sample up to then.
+class SampleFeed {
  public:
-  explicit LocalizerReplay(const OpenLoopRecording& rec) : rec_(rec), loc_(rec.localizer) {}
-  void feed_until(double t) {
+  SampleFeed(const OpenLoopRecording& rec, std::vector<localize::StampedPose> odometry)
+      : rec_(rec), odom_(std::move(odometry)) {}
+  void feed_until(navigate::NavStack& stack, double t) {
+    constexpr double never = std::numeric_limits<double>::infinity();
     for (;;) {
-      const bool e = ie_ < rec_.encoders.size() && rec_.encoders[ie_].stamp <= t;
-      const bool i = ii_ < rec_.imu.size() && rec_.imu[ii_].stamp <= t;
-      if (!e && !i) return;
-      if (e && (!i || rec_.encoders[ie_].stamp <= rec_.imu[ii_].stamp)) {
-        loc_.add_encoders(rec_.encoders[ie_++]);
-      } else {
-        loc_.add_imu(rec_.imu[ii_++]);
-      }
+      // Encoders only without an external odometry (the stack's own Localizer).
+      const double te = odom_.empty() && ie_ < rec_.encoders.size() ? rec_.encoders[ie_].stamp : never;
+      const double ti = ii_ < rec_.imu.size() ? rec_.imu[ii_].stamp : never;
+      const double to = io_ < odom_.size() ? odom_[io_].stamp : never;
+      const double next = std::min({te, ti, to});
+      if (!(next <= t)) return;
+      if (te == next)
+        stack.on_encoders(rec_.encoders[ie_++]);
+      else if (ti == next)
+        stack.on_imu(rec_.imu[ii_++]);
+      else
+        stack.on_odometry(odom_[io_++]);
     }
   }
-  const localize::Localizer& localizer() const { return loc_; }
 
  private:
   const OpenLoopRecording& rec_;
-  localize::Localizer loc_;
-  std::size_t ie_ = 0, ii_ = 0;
+  std::vector<localize::StampedPose> odom_;
+  std::size_t ie_ = 0, ii_ = 0, io_ = 0;
 };
 
 /// Scores of one detector x tracker run over a scenario (in-lane frames only).
@@ -185,33 +180,42 @@ inline const sim::GroundTruth* truth_at(const std::vector<sim::GroundTruth>& gt,
   return it != gt.end() && std::abs(it->stamp - t) <= 0.026 ? &*it : nullptr;
 }
 
-/// Replays a recording through detector `detector` and tracker `tracker` ("none": the raw
-/// detector corridor).
+/// Replays a recording through navigate::NavStack (as far as the tracker) with detector
+/// `detector` and tracker `tracker` ("none": the raw detector corridor).
 inline OpenLoopScore run_open_loop(const OpenLoopRecording& rec, const OpenLoopScenario& s,
                                    const std::string& detector, const std::string& tracker) {
-  auto pipeline = io::make_pipeline(
-      detector, std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml", rec.T_base_lidar);
+  navigate::NavStackConfig config;
+  config.stack.mode = navigate::StackMode::track;
+  config.stack.level_by_gravity = s.level;
+  config.stack.sweep_period = rec.sweep_period;
+  config.localizer = rec.localizer;
+  const bool truth = s.odometry == OdometryKind::truth;
+  if (truth) config.stack.odometry = navigate::OdometryInput::external;
+  navigate::NavStackParts parts;
+  parts.pipeline = std::make_unique<detect::DetectionPipeline>(io::make_pipeline(
+      detector, std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml", rec.T_base_lidar));
   // "none" is the registry's raw-corridor tracker (track/raw_corridor.hpp).
-  const std::unique_ptr<track::RowTracker> trk = io::make_tracker(tracker, {});
-  const OdometrySource truth =
-      truth_odometry(rec.truth, s.odom_scale_error, core::deg2rad(s.odom_yaw_drift_deg));
-  LocalizerReplay replay(rec);
+  parts.tracker = io::make_tracker(tracker, {});
+  navigate::NavStack stack(config, std::move(parts));
+  SampleFeed feed(rec, truth ? drifted_truth(rec.truth, s.odom_scale_error,
+                                             core::deg2rad(s.odom_yaw_drift_deg))
+                             : std::vector<localize::StampedPose>{});
   OpenLoopScore sc;
   double sq_lat = 0, sq_head = 0;
+  const double t0 = rec.truth.front().stamp;
   for (const auto& cloud : rec.clouds) {
     const double t = cloud.stamp, t_end = t + rec.sweep_period;
-    replay.feed_until(t_end);
-    const auto T = s.odometry == OdometryKind::truth ? truth(t) : replay.localizer().T_odom_base(t);
-    if (!T) continue;
-    const double v = replay.localizer().latest().twist.v;
-    const auto up = s.level ? localize::gravity_up(rec.imu, t, t_end, v) : std::nullopt;
-    core::RowObservation obs = up ? pipeline.process(cloud, *up) : pipeline.process(cloud);
-    const double t0 = rec.truth.front().stamp;
+    feed.feed_until(stack, t_end);
     if (t - t0 >= s.blackout_start && t - t0 < s.blackout_start + s.blackout_length) {
-      obs = core::RowObservation();  // artificial blackout: no_rows
-      obs.stamp = t;
+      core::PointCloud blind;  // artificial blackout: the LiDAR returns nothing
+      blind.stamp = t;
+      stack.on_cloud(blind);
+    } else {
+      stack.on_cloud(cloud);
     }
-    const track::RowTracking out = trk->update(obs, *T);
+    const navigate::NavCommand c = stack.command(t_end);
+    if (!c.frame || !c.frame->tracking) continue;  // no odometry at the frame
+    const track::RowTracking& out = *c.frame->tracking;
     ++sc.frames;
     sc.status.push_back(out.status);
     sc.stamps.push_back(t);
