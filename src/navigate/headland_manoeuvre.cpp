@@ -1,5 +1,5 @@
-// Headland manoeuvres: turn choice, primitive paths (rotate / follow) in the turn frame, the
-// pure-pursuit follower on the odometry pose and the re-anchoring on row ends.
+// Headland manoeuvres: the chosen turn kind's primitives (navigate/turn_planner.hpp) driven on
+// the odometry pose (rotations, pure pursuit) and re-anchored on the row ends seen.
 #include "rownav/navigate/headland_manoeuvre.hpp"
 
 #include <algorithm>
@@ -8,70 +8,13 @@
 #include <optional>
 
 #include "rownav/core/angle.hpp"
+#include "rownav/navigate/turn_path.hpp"
 
 namespace rownav::navigate {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kArcStep = 0.1;  // [m] path sampling
-constexpr double kRadiusMargin = 1.25;  // [-] turn radius / min turn radius (car-like robots)
-
-/// Points of an arc around c from a to b (same radius), counter-clockwise when ccw.
-std::vector<Eigen::Vector2d> arc(const Eigen::Vector2d& c, const Eigen::Vector2d& a,
-                                 const Eigen::Vector2d& b, bool ccw) {
-  const double r = (a - c).norm();
-  const double a0 = std::atan2(a.y() - c.y(), a.x() - c.x());
-  double a1 = std::atan2(b.y() - c.y(), b.x() - c.x());
-  if (ccw)
-    while (a1 <= a0 + 1e-9) a1 += 2.0 * kPi;
-  else
-    while (a1 >= a0 - 1e-9) a1 -= 2.0 * kPi;
-  const int n = std::max(2, static_cast<int>(std::ceil(std::abs(a1 - a0) * r / kArcStep)) + 1);
-  std::vector<Eigen::Vector2d> out;
-  for (int i = 0; i < n; ++i) {
-    const double t = a0 + (a1 - a0) * i / (n - 1);
-    out.emplace_back(c.x() + r * std::cos(t), c.y() + r * std::sin(t));
-  }
-  return out;
-}
-
-void append(std::vector<Eigen::Vector2d>& path, const std::vector<Eigen::Vector2d>& more) {
-  for (const auto& p : more)
-    if (path.empty() || (p - path.back()).norm() > 1e-6) path.push_back(p);
-}
-
-/// Resamples a path every kArcStep (with its anchor weights) so the pursuit cursor can advance.
-void densify(std::vector<Eigen::Vector2d>& path, std::vector<double>& w) {
-  std::vector<Eigen::Vector2d> p;
-  std::vector<double> ww;
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-    const int n =
-        std::max(1, static_cast<int>(std::ceil((path[i + 1] - path[i]).norm() / kArcStep)));
-    for (int k = 0; k < n; ++k) {
-      const double t = static_cast<double>(k) / n;
-      p.push_back(path[i] + t * (path[i + 1] - path[i]));
-      ww.push_back(w[i] + t * (w[i + 1] - w[i]));
-    }
-  }
-  p.push_back(path.back());
-  ww.push_back(w.back());
-  path = std::move(p);
-  w = std::move(ww);
-}
-
-/// Weight of the target correction along a path: its cumulative length fraction.
-std::vector<double> ramp(const std::vector<Eigen::Vector2d>& path) {
-  std::vector<double> w(path.size(), 0.0);
-  double total = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) total += (path[i] - path[i - 1]).norm();
-  double acc = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    acc += (path[i] - path[i - 1]).norm();
-    w[i] = total > 0.0 ? acc / total : 1.0;
-  }
-  return w;
-}
 
 }  // namespace
 
@@ -82,26 +25,6 @@ void ManoeuvreConfig::validate() const {
   core::check_positive(lookahead, "lookahead");
   core::check_range(anchor_gate, 0.05, 0.5, "anchor_gate");
   core::check_positive(pole_band, "pole_band");
-}
-
-int min_feasible_shift(double spacing, double min_turn_radius) {
-  if (!(spacing > 0.0) || !(min_turn_radius > 0.0)) return 1;
-  return std::max(1, static_cast<int>(
-                        std::ceil(2.0 * kRadiusMargin * min_turn_radius / spacing - 1e-9)));
-}
-
-TurnPlan choose_turn(ManoeuvreChoice choice, int shift, double spacing, const TurnAbility& robot) {
-  const double lateral = std::max(1, shift) * spacing;
-  const bool in_place_ok = robot.can_turn_in_place;
-  if ((choice == ManoeuvreChoice::automatic || choice == ManoeuvreChoice::in_place) && in_place_ok)
-    return {TurnKind::in_place, 0.0, true};
-  // Lan 2021 (001 sec. 3.3): fixed radius = spacing / 2; never below the robot's minimum.
-  // A car-like robot gets kRadiusMargin x its minimum: its steering takes ~1 s to swing from
-  // lock to lock between the arcs, and it needs curvature to spare to come back onto the path.
-  const double r = std::max(spacing / 2.0, kRadiusMargin * robot.min_turn_radius);
-  if (choice != ManoeuvreChoice::three_point && lateral >= 2.0 * r - 1e-9)
-    return {TurnKind::u_turn, r, in_place_ok};
-  return {TurnKind::bulb, r, in_place_ok};
 }
 
 HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPlan& plan,
@@ -116,58 +39,15 @@ HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPl
   planned_y_ = target_y_ = side_ * shift_ * spacing_;
   const double e = std::max(0.0, exit_distance);
   exit_x_ = e;
-  if (plan.kind == TurnKind::in_place)
-    build_in_place(e);
-  else if (plan.kind == TurnKind::u_turn)
-    build_u_turn(e, plan.radius);
-  else
-    build_bulb(e, plan.radius);
+  TurnGeometry g;
+  g.exit_x = e;
+  g.shift = shift_;
+  g.side = side_;
+  g.spacing = spacing_;
+  g.radius = plan.radius;
+  primitives_ = make_turn_planner(plan.kind)->plan(g);
   for (auto& p : primitives_)
-    if (!p.rotate) densify(p.path, p.anchor);
-}
-
-void HeadlandManoeuvre::build_in_place(double e) {
-  // Bertoglio 2023 sec. II-B/C: rotate 90 deg, drive along the row ends, rotate 90 deg.
-  primitives_.push_back({true, side_ * kPi / 2.0, {}, {}, false, false});
-  Primitive leg;
-  leg.path = {{e, 0.0}, {e, planned_y_}};
-  leg.anchor = {0.0, 1.0};
-  leg.headland = true;
-  primitives_.push_back(leg);
-  primitives_.push_back({true, kPi, {}, {}, false, false});
-}
-
-void HeadlandManoeuvre::build_u_turn(double e, double r) {
-  // Lan 2021: semicircle of radius spacing / 2 for k = 1; arc - straight - arc for k > 1.
-  const double D = shift_ * spacing_, s = side_;
-  const bool ccw = side_ > 0;
-  Primitive p;
-  if (D <= 2.0 * r + 1e-9) {
-    const Eigen::Vector2d c(e, s * D / 2.0);
-    p.path = arc(c, {e, 0.0}, {e, s * D}, ccw);
-  } else {
-    append(p.path, arc({e, s * r}, {e, 0.0}, {e + r, s * r}, ccw));
-    append(p.path, {{e + r, s * (D - r)}});
-    append(p.path, arc({e, s * (D - r)}, {e + r, s * (D - r)}, {e, s * D}, ccw));
-  }
-  p.anchor = ramp(p.path);
-  primitives_.push_back(p);
-}
-
-void HeadlandManoeuvre::build_bulb(double e, double r) {
-  // Omega turn: away from the side, a large loop towards it, back into the target corridor.
-  const double D = shift_ * spacing_, s = side_;
-  const Eigen::Vector2d c1(e, -s * r), c3(e, s * (D + r));
-  const double h = std::sqrt(std::max(0.0, 4.0 * r * r - std::pow(D / 2.0 + r, 2)));
-  const Eigen::Vector2d c2(e + h, s * D / 2.0);
-  const Eigen::Vector2d t12 = (c1 + c2) / 2.0, t23 = (c2 + c3) / 2.0;
-  const bool ccw = side_ > 0;
-  Primitive p;
-  append(p.path, arc(c1, {e, 0.0}, t12, !ccw));
-  append(p.path, arc(c2, t12, t23, ccw));
-  append(p.path, arc(c3, t23, {e, s * D}, !ccw));
-  p.anchor = ramp(p.path);
-  primitives_.push_back(p);
+    if (!p.rotate) densify_turn_path(p.path, p.anchor);
 }
 
 core::Line2 HeadlandManoeuvre::entry_line_odom() const {
@@ -219,7 +99,7 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
   if (lo && hi && std::abs(robot.y() - target_y_) < 0.5 * spacing_) target_y_ = (*lo + *hi) / 2.0;
 }
 
-core::Twist2 HeadlandManoeuvre::follow(Primitive& p, const core::Pose2& T_turn_base) {
+core::Twist2 HeadlandManoeuvre::follow(const TurnPrimitive& p, const core::Pose2& T_turn_base) {
   const double dy = target_y_ - planned_y_;
   auto point = [&](std::size_t i) {
     return Eigen::Vector2d(p.path[i] + Eigen::Vector2d(0, p.anchor[i] * dy));
@@ -269,7 +149,7 @@ ManoeuvreStep HeadlandManoeuvre::step(const core::Pose2& T_odom_base,
   out.row_passed = rows_passed_ > passed_before;
   out.reanchored = std::abs(target_y_ - target_before) > 0.02;
   for (int guard = 0; guard < 3 && !done(); ++guard) {
-    Primitive& p = primitives_[index_];
+    const TurnPrimitive& p = primitives_[index_];
     out.phase = p.headland ? ManoeuvrePhase::headland : ManoeuvrePhase::turning;
     if (p.rotate) {
       // Closed on odometry yaw (003 sec. II-B); the skid is corrected on the row ends later.

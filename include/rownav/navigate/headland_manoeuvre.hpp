@@ -15,11 +15,7 @@
 /// Turn frame: origin on the exit corridor's centre line at the row ends, x along the exit
 /// direction, y to the left. The target corridor centre starts at y = side * shift * spacing.
 #include <Eigen/Core>
-#include <array>
-#include <cstdint>
 #include <optional>
-#include <string_view>
-#include <utility>
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
@@ -27,38 +23,10 @@
 #include "rownav/core/pose2.hpp"
 #include "rownav/core/twist.hpp"
 #include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/turn_choice.hpp"
+#include "rownav/navigate/turn_planner.hpp"
 
 namespace rownav::navigate {
-
-/// Manoeuvre requested in the configuration.
-enum class ManoeuvreChoice : std::uint8_t { automatic, in_place, u_turn, skip, three_point };
-/// Manoeuvre actually driven.
-enum class TurnKind : std::uint8_t { in_place, u_turn, bulb };
-
-/// What a robot can do, for choosing a turn.
-struct TurnAbility {
-  bool can_turn_in_place = true;
-  double min_turn_radius = 0.0;  ///< [m]
-};
-
-/// The chosen turn and its radius.
-struct TurnPlan {
-  TurnKind kind = TurnKind::in_place;
-  double radius = 0.0;  ///< [m] arcs (u_turn, bulb)
-  /// The robot can rotate in place; when not (car-like), it backs up along the pursuit arc when
-  /// the look-ahead point falls behind it (a three-point correction) instead of rotating.
-  bool can_rotate = true;
-};
-
-/// Turn for `shift` corridors across at `spacing` [m]: in_place for robots that can (automatic,
-/// in_place); u_turn with radius r = max(spacing / 2, 1.25 r_min) when shift * spacing >= 2 r
-/// (Lan 2021: radius = spacing / 2; the 25 % margin lets a car-like robot whose steering lags
-/// come back onto the arc); otherwise a bulb of radius r. Never throws.
-TurnPlan choose_turn(ManoeuvreChoice choice, int shift, double spacing, const TurnAbility& robot);
-
-/// Smallest shift k (corridors) a U-turn of the robot can make at `spacing`:
-/// k * spacing >= 2 * 1.25 r_min (choose_turn's radius margin; at least 1).
-int min_feasible_shift(double spacing, double min_turn_radius);
 
 /// Parameters of the headland manoeuvres.
 struct ManoeuvreConfig {
@@ -114,19 +82,8 @@ class HeadlandManoeuvre {
   std::vector<Eigen::Vector2d> path_odom() const;
 
  private:
-  struct Primitive {
-    bool rotate = false;
-    double heading = 0.0;               // rotate: target heading (turn frame)
-    std::vector<Eigen::Vector2d> path;  // follow: points (turn frame)
-    std::vector<double> anchor;         // follow: weight of the target correction per point
-    bool headland = false;
-    bool reverse_side = false;
-  };
-  void build_in_place(double e);
-  void build_u_turn(double e, double r);
-  void build_bulb(double e, double r);
   void reanchor(const std::vector<Eigen::Vector2d>& ends_turn, const Eigen::Vector2d& robot);
-  core::Twist2 follow(Primitive& p, const core::Pose2& T_turn_base);
+  core::Twist2 follow(const TurnPrimitive& p, const core::Pose2& T_turn_base);
 
   struct Pole {
     double y = 0.0;  // turn frame
@@ -139,27 +96,9 @@ class HeadlandManoeuvre {
   core::Pose2 T_odom_turn_;
   int side_ = 1, shift_ = 1;
   double spacing_ = 1.0, target_y_ = 0.0, planned_y_ = 0.0;
-  std::vector<Primitive> primitives_;
+  std::vector<TurnPrimitive> primitives_;
   std::size_t index_ = 0, cursor_ = 0;
   int rows_passed_ = 0;
 };
 
 }  // namespace rownav::navigate
-
-template <>
-struct rownav::core::EnumNames<rownav::navigate::ManoeuvreChoice> {
-  using E = rownav::navigate::ManoeuvreChoice;
-  static constexpr std::array<std::pair<E, std::string_view>, 5> values{
-      {{E::automatic, "auto"},
-       {E::in_place, "in_place"},
-       {E::u_turn, "u_turn"},
-       {E::skip, "skip"},
-       {E::three_point, "three_point"}}};
-};
-
-template <>
-struct rownav::core::EnumNames<rownav::navigate::TurnKind> {
-  using E = rownav::navigate::TurnKind;
-  static constexpr std::array<std::pair<E, std::string_view>, 3> values{
-      {{E::in_place, "in_place"}, {E::u_turn, "u_turn"}, {E::bulb, "bulb"}}};
-};
