@@ -26,7 +26,7 @@ void NavigatorConfig::validate() const {
   core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
               "must be > entry_check_depth");
   core::check_range(entry_gate, 0.05, 1.0, "entry_gate");
-  core::check_positive(row_end_frames, "row_end_frames");
+  core::validate_nested(row_end_estimate, "row_end_estimate");
   core::check_positive(line_gain, "line_gain");
   core::check_positive(heading_gain, "heading_gain");
   core::validate_nested(turn, "turn");
@@ -38,7 +38,8 @@ Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, Turn
     : config_(config),
       order_(std::move(order)),
       changes_(corridor_changes(order_, first_turn)),
-      end_box_near_(end_box_near) {
+      end_box_near_(end_box_near),
+      ends_(config.row_end_estimate) {
   config_.validate();
   if (order_.empty()) state_ = NavState::done;
 }
@@ -72,7 +73,7 @@ NavOutput Navigator::step(const NavInput& in) {
       in_row(in, out);
       break;
     case NavState::exiting:
-      remember_row_geometry(in);
+      ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
       exiting(in.T_odom_base, out, in.stamp);
       break;
     case NavState::turning:
@@ -121,53 +122,6 @@ bool Navigator::obstacle_ahead(const NavInput& in) const {
   return n >= config_.obstacle_min_points;
 }
 
-Eigen::Vector2d Navigator::recent_median(std::deque<Eigen::Vector2d>& recent,
-                                         const Eigen::Vector2d& p) const {
-  // The latest frames give the end relative to the robot with the least odometry drift; the
-  // median of a few of them drops single-frame outliers (a weed or post in the headland on the
-  // row's line stretches the support).
-  recent.push_back(p);
-  while (static_cast<int>(recent.size()) > config_.row_end_frames) recent.pop_front();
-  std::vector<std::pair<double, Eigen::Vector2d>> by_arc;
-  for (const auto& q : recent) by_arc.emplace_back(centre_odom_->arc(q), q);
-  const auto mid = by_arc.begin() + static_cast<std::ptrdiff_t>(by_arc.size() / 2);
-  std::nth_element(by_arc.begin(), mid, by_arc.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  return mid->second;
-}
-
-void Navigator::remember_row_geometry(const NavInput& in) {
-  const auto& t = in.tracking;
-  if (t.status != track::TrackStatus::tracking) return;
-  const core::Pose2& T = in.T_odom_base;
-  // Past the row ends only a short stub of row remains behind the robot (and headland clutter
-  // ahead): its line is no longer trusted, the exit keeps the last in-row centre line.
-  const bool past_end = centre_odom_ && end_arc_ && centre_odom_->arc(T.translation()) > *end_arc_;
-  if (!past_end) centre_odom_ = t.centre_line_base.transformed(T);
-  if (t.row_spacing > 0.0) {  // running mean of the tracker's spacing (003 Table I row width)
-    spacing_ = (spacing_ * spacing_n_ + t.row_spacing) / (spacing_n_ + 1);
-    spacing_n_ = std::min(spacing_n_ + 1, 50);
-  }
-  // Row ends: the far end of the followed rows' support, once it is in view (not range-cut).
-  // Only rows observed in this frame count: a coasting row keeps the extent of an older frame,
-  // in that frame's base, which would push the end forward by the distance driven since.
-  auto end_of = [&](int i) -> std::optional<Eigen::Vector2d> {
-    if (i < 0 || i >= static_cast<int>(t.rows.size())) return std::nullopt;
-    const auto& r = t.rows[static_cast<std::size_t>(i)];
-    if (r.x_max > 7.0 || r.support < 3 || r.last_seen < in.observation.stamp) return std::nullopt;
-    return T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
-  };
-  if (auto e = end_of(t.left)) left_end_ = recent_median(left_ends_, *e);
-  if (auto e = end_of(t.right)) right_end_ = recent_median(right_ends_, *e);
-  if (left_end_ || right_end_) {
-    double arc = 0.0;
-    int n = 0;
-    for (const auto& e : {left_end_, right_end_})
-      if (e) arc += centre_odom_->arc(*e), ++n;
-    end_arc_ = arc / n;
-  }
-}
-
 void Navigator::in_row(const NavInput& in, NavOutput& out) {
   const bool seen = in.observation.status != core::DetectionStatus::no_rows &&
                     in.tracking.status != track::TrackStatus::lost;
@@ -178,7 +132,7 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   if (obstacle_ahead(in))
     return stop(StopReason::obstacle, out, in.stamp,
                 "obstacle within " + fmt(config_.stop_distance) + " m");
-  remember_row_geometry(in);
+  ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
   control::ControlInput c;
   c.stamp = in.stamp;
   c.lateral_error = in.tracking.lateral_error;
@@ -188,16 +142,17 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   c.speed_ref = config_.row_speed;
   c.speed = in.twist.v;
   out.control = c;
-  if (in.end_of_row.end_detected && centre_odom_) {
+  const auto& centre = ends_.centre();
+  if (in.end_of_row.end_detected && centre) {
     state_ = NavState::exiting;
-    if (!end_arc_) {  // no row end seen: take the detector's distance, else the box's near edge
+    if (!ends_.end_arc()) {  // no row end seen: the detector's distance, else the box's near edge
       const double ahead = in.end_of_row.distance_to_end.value_or(end_box_near_);
-      end_arc_ = centre_odom_->arc(in.T_odom_base.translation()) + ahead;
+      ends_.set_end_arc(centre->arc(in.T_odom_base.translation()) + ahead);
     }
-    out.events.push_back(
-        {in.stamp, NavEventKind::row_end, order_[leg_], centre_odom_->at(*end_arc_),
-         "row end detected, " + fmt(*end_arc_ - centre_odom_->arc(in.T_odom_base.translation())) +
-             " m ahead"});
+    const double end = *ends_.end_arc();
+    out.events.push_back({in.stamp, NavEventKind::row_end, order_[leg_], centre->at(end),
+                          "row end detected, " +
+                              fmt(end - centre->arc(in.T_odom_base.translation())) + " m ahead"});
   }
 }
 
@@ -210,14 +165,14 @@ core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& 
 
 void Navigator::exiting(const core::Pose2& T, NavOutput& out, double stamp) {
   // 003 sec. II-B: leave the row by a fixed distance measured by odometry.
-  const double s = centre_odom_->arc(T.translation());
-  if (s < *end_arc_ + config_.exit_distance) {
-    out.cmd = follow_line(*centre_odom_, T, config_.row_speed);
+  const core::Line2& centre = *ends_.centre();
+  if (centre.arc(T.translation()) < *ends_.end_arc() + config_.exit_distance) {
+    out.cmd = follow_line(centre, T, config_.row_speed);
     return;
   }
   ++served_;
-  if (left_end_) row_ends_.push_back(*left_end_);
-  if (right_end_) row_ends_.push_back(*right_end_);
+  if (ends_.left_end()) row_ends_.push_back(*ends_.left_end());
+  if (ends_.right_end()) row_ends_.push_back(*ends_.right_end());
   out.events.push_back({stamp, NavEventKind::exit_done, order_[leg_], T.translation(),
                         "left corridor " + std::to_string(order_[leg_])});
   if (leg_ + 1 >= order_.size()) {

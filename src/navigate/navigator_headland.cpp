@@ -9,13 +9,12 @@ namespace rownav::navigate {
 
 void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
   const CorridorChange& change = changes_[leg_];
-  double spacing = spacing_;
-  if (!(spacing > 0.0) && left_end_ && right_end_) spacing = (*left_end_ - *right_end_).norm();
+  const double spacing = ends_.spacing();
   if (!(spacing > 0.0))
     return stop(StopReason::perception_lost, out, stamp, "row spacing never estimated");
   spacing_ = spacing;
-  const Eigen::Vector2d origin = centre_odom_->at(*end_arc_);
-  const core::Pose2 T_odom_turn(origin.x(), origin.y(), centre_odom_->heading());
+  const Eigen::Vector2d origin = ends_.centre()->at(*ends_.end_arc());
+  const core::Pose2 T_odom_turn(origin.x(), origin.y(), ends_.centre()->heading());
   const TurnPlan plan = choose_turn(config_.manoeuvre, change.shift, spacing, robot_.turn);
   manoeuvre_ = std::make_unique<HeadlandManoeuvre>(config_.turn, plan, T_odom_turn, change.shift,
                                                    change.side, spacing, config_.exit_distance);
@@ -27,13 +26,8 @@ void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
                             std::string(core::enum_name(change.side)) + " by " +
                             std::to_string(change.shift) + " corridor(s), spacing " + fmt(spacing) +
                             " m, towards corridor " + std::to_string(change.to)});
-  centre_odom_.reset();
+  ends_.reset();
   entry_seen_.reset();
-  left_end_.reset();
-  right_end_.reset();
-  left_ends_.clear();
-  right_ends_.clear();
-  end_arc_.reset();
 }
 
 void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp) {

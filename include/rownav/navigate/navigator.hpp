@@ -27,6 +27,7 @@
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/headland_manoeuvre.hpp"
 #include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/row_end_estimator.hpp"
 #include "rownav/navigate/row_end_poles.hpp"
 #include "rownav/track/row_tracker.hpp"
 
@@ -90,7 +91,7 @@ struct NavigatorConfig {
   int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
   double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
   double entry_max_depth = 6.0;     ///< [m] entering without a corridor seen -> perception_lost
-  int row_end_frames = 5;     ///< [frames] row-end point = median of the latest per-frame estimates
+  RowEndEstimatorConfig row_end_estimate;  ///< row ends and spacing of the corridor being left
   double entry_gate = 0.5;    ///< [-] x spacing: observed vs planned corridor centre, right place
   double line_gain = 1.5;     ///< [1/m] lateral gain of the odometry line follower (exit / entry)
   double heading_gain = 1.5;  ///< [1/s] heading gain of the same
@@ -108,7 +109,7 @@ struct NavigatorConfig {
     v("obstacle_min_points", s.obstacle_min_points);
     v("entry_check_depth", s.entry_check_depth);
     v("entry_max_depth", s.entry_max_depth);
-    v("row_end_frames", s.row_end_frames);
+    v("row_end_estimate", s.row_end_estimate);
     v("entry_gate", s.entry_gate);
     v("line_gain", s.line_gain);
     v("heading_gain", s.heading_gain);
@@ -176,10 +177,7 @@ class Navigator {
   void exiting(const core::Pose2& T, NavOutput& out, double stamp);
   void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
-  void remember_row_geometry(const NavInput& in);
   static std::string fmt(double v);
-  Eigen::Vector2d recent_median(std::deque<Eigen::Vector2d>& recent,
-                                const Eigen::Vector2d& p) const;
   void start_turn(const core::Pose2& T, NavOutput& out, double stamp);
   void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
   bool obstacle_ahead(const NavInput& in) const;
@@ -194,12 +192,9 @@ class Navigator {
   StopReason reason_ = StopReason::none;
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
   int served_ = 0, turns_ = 0;
-  double last_seen_ = -1.0, last_stamp_ = 0.0, spacing_ = 0.0;
-  int spacing_n_ = 0;
-  std::optional<core::Line2> centre_odom_;  // exit corridor centre line, oriented forward
-  std::optional<Eigen::Vector2d> left_end_, right_end_;  // odom
-  std::deque<Eigen::Vector2d> left_ends_, right_ends_;   // latest per-frame estimates (odom)
-  std::optional<double> end_arc_;                        // row ends along centre_odom_
+  double last_seen_ = -1.0, last_stamp_ = 0.0;
+  double spacing_ = 0.0;   // [m] spacing of the turn in progress (entry gate, row ends)
+  RowEndEstimator ends_;   // the corridor being left
   std::unique_ptr<HeadlandManoeuvre> manoeuvre_;
   RobotLimits robot_;
   std::vector<Eigen::Vector2d> row_ends_;

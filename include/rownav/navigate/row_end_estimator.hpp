@@ -1,0 +1,74 @@
+#pragma once
+/// @file row_end_estimator.hpp Where the corridor being left ends, and the row spacing, from the
+/// tracked rows while the robot drives out (Bertoglio 2023, 003_25dc0df51a1e5faf.txt sec. II-C:
+/// the end-row points; Table I's row width). Kept in the odom frame: the latest frames give the
+/// ends relative to the robot with the least odometry drift, a median of a few drops outliers.
+#include <Eigen/Core>
+#include <deque>
+#include <optional>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/line2.hpp"
+#include "rownav/core/pose2.hpp"
+#include "rownav/track/row_tracker.hpp"
+
+namespace rownav::navigate {
+
+/// Row-end estimator parameters.
+struct RowEndEstimatorConfig {
+  int frames = 5;  ///< [frames] row-end point = median of the latest per-frame estimates (rownav)
+  /// [m] a row's far end counts only when nearer than this (beyond it the extent is the sensor's
+  /// reach, not the row's end: an OS1-16's canopy returns thin out at ~7 m; rownav)
+  double max_range = 7.0;
+  int min_support = 3;      ///< [points] a row seen by fewer points gives no end (rownav)
+  int spacing_window = 50;  ///< [frames] running mean of the tracker's spacing (~5 s at 10 Hz)
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("frames", s.frames);
+    v("max_range", s.max_range);
+    v("min_support", s.min_support);
+    v("spacing_window", s.spacing_window);
+  }
+  void validate() const {
+    core::check_positive(frames, "frames");
+    core::check_positive(max_range, "max_range");
+    core::check_positive(min_support, "min_support");
+    core::check_positive(spacing_window, "spacing_window");
+  }
+};
+
+/// Row ends and spacing of the corridor being served. Never throws.
+class RowEndEstimator {
+ public:
+  explicit RowEndEstimator(const RowEndEstimatorConfig& config = {}) : config_(config) {}
+
+  /// One tracked frame at pose T (odom). Only rows observed in this frame (`frame_stamp`) count:
+  /// a coasting row keeps an older frame's extent, in that frame's base.
+  void update(const track::RowTracking& t, const core::Pose2& T, double frame_stamp);
+  /// The exit corridor's centre line (odom, oriented forward), once tracked.
+  const std::optional<core::Line2>& centre() const { return centre_; }
+  /// [m] row ends along centre() (mean of the left and right ends), once seen or set.
+  const std::optional<double>& end_arc() const { return end_arc_; }
+  void set_end_arc(double arc) { end_arc_ = arc; }
+  const std::optional<Eigen::Vector2d>& left_end() const { return left_end_; }
+  const std::optional<Eigen::Vector2d>& right_end() const { return right_end_; }
+  /// [m] row spacing: running mean of the tracker's, else the distance between the two ends,
+  /// else 0 (unknown).
+  double spacing() const;
+  /// A new corridor: forgets the centre line and the ends (the spacing is kept).
+  void reset();
+
+ private:
+  Eigen::Vector2d recent_median(std::deque<Eigen::Vector2d>& recent, const Eigen::Vector2d& p);
+
+  RowEndEstimatorConfig config_;
+  std::optional<core::Line2> centre_;
+  std::optional<Eigen::Vector2d> left_end_, right_end_;
+  std::deque<Eigen::Vector2d> left_ends_, right_ends_;
+  std::optional<double> end_arc_;
+  double spacing_ = 0.0;
+  int spacing_n_ = 0;
+};
+
+}  // namespace rownav::navigate

@@ -1,0 +1,130 @@
+// The navigator's states and transitions, driven by a small kinematic world: corridors 1.8 m
+// apart (centre y = k * 1.8), rows from x = 0 to x = 10, the robot's pose integrated from the
+// commands (odom = world). The perception answers are made from that world exactly.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "rownav/navigate/navigator.hpp"
+
+namespace rownav::navigate {
+namespace {
+
+constexpr double kSpacing = 1.8, kRowsEnd = 10.0, kDt = 0.01;
+
+/// What the perception would report at pose T; `wrong` shifts the corridor seen by that many.
+NavInput perceive(const core::Pose2& T, double t, int wrong, bool blind) {
+  NavInput in;
+  in.stamp = t;
+  in.T_odom_base = T;
+  in.observation.stamp = t;
+  const bool along = std::abs(std::sin(T.theta)) < 0.5;
+  const bool forward = std::cos(T.theta) > 0.0;
+  if (blind || !along || T.x < -0.5 || T.x > kRowsEnd) return in;  // headland: no rows
+  const int k = static_cast<int>(std::lround(T.y / kSpacing)) + wrong;
+  const Eigen::Vector2d dir(forward ? 1.0 : -1.0, 0.0);
+  const core::Pose2 Ti = T.inverse();
+  in.tracking.status = track::TrackStatus::tracking;
+  in.tracking.row_spacing = kSpacing;
+  in.tracking.centre_line_base = core::Line2({0.0, k * kSpacing}, dir).transformed(Ti);
+  in.tracking.lateral_error = -in.tracking.centre_line_base.y_at(0.0);
+  in.tracking.heading_error = -in.tracking.centre_line_base.heading();
+  const double ahead = forward ? kRowsEnd - T.x : T.x;  // to the end the robot drives towards
+  for (double side : {-0.5, 0.5}) {
+    track::TrackedRow r;
+    r.line_base = core::Line2({0.0, k * kSpacing + side * kSpacing}, dir).transformed(Ti);
+    r.x_max = ahead, r.support = 50, r.last_seen = t;
+    in.tracking.rows.push_back(r);
+  }
+  in.tracking.right = forward ? 0 : 1, in.tracking.left = forward ? 1 : 0;
+  in.observation.status = core::DetectionStatus::ok;
+  in.observation.corridor = core::CorridorObservation{0.0, 0.0, kSpacing};
+  // Lan 2021's box 3-5 m ahead empties 3 m before the row ends.
+  in.end_of_row.end_detected = ahead < 3.0;
+  in.end_of_row.distance_to_end = ahead;
+  return in;
+}
+
+struct Drive {
+  std::vector<NavState> states;  // each state once, in the order entered
+  std::vector<NavEventKind> events;
+  NavOutput last;
+  bool reset_on_turn = false;
+};
+
+/// 10 Hz frames, 100 Hz control, for up to 120 s; `wrong` / `blind_entry` alter what is seen
+/// while entering.
+Drive drive(int wrong_entry = 0, bool blind_entry = false) {
+  Navigator nav(NavigatorConfig{}, {0, 1}, TurnSide::left);
+  core::Pose2 T(0.0, 0.0, 0.0);
+  core::Twist2 cmd;
+  Drive run;
+  for (int i = 1; i <= 12000; ++i) {
+    const double t = i * kDt;
+    const bool entering = nav.state() == NavState::entering;
+    NavOutput out;
+    if (i % 10 == 0) {
+      out = nav.step(perceive(T, t, entering ? wrong_entry : 0, entering && blind_entry));
+      if (out.control)  // the stack's controller: steer onto the corridor centre
+        out.cmd = {out.control->speed_ref, 0.0,
+                   -1.5 * out.control->lateral_error - 1.5 * out.control->heading_error};
+    } else {
+      out = nav.hold(t, T, cmd);
+    }
+    run.reset_on_turn |= out.reset_tracking;
+    cmd = out.cmd;
+    T = T * core::Pose2(cmd.v * kDt, 0.0, cmd.omega * kDt);
+    if (run.states.empty() || run.states.back() != out.state) run.states.push_back(out.state);
+    for (const auto& e : out.events) run.events.push_back(e.kind);
+    run.last = out;
+    if (out.state == NavState::done || out.state == NavState::safe_stop) break;
+  }
+  return run;
+}
+
+bool contains_in_order(const std::vector<NavState>& seq, const std::vector<NavState>& want) {
+  std::size_t j = 0;
+  for (NavState s : seq)
+    if (j < want.size() && s == want[j]) ++j;
+  return j == want.size();
+}
+
+TEST(NavigatorStates, ServesTwoCorridorsThroughEveryStateOfAnInPlaceTurn) {
+  const Drive r = drive();
+  EXPECT_EQ(r.last.state, NavState::done);
+  EXPECT_EQ(r.last.stop_reason, StopReason::done);
+  EXPECT_EQ(r.last.served, 2);
+  EXPECT_TRUE(contains_in_order(
+      r.states, {NavState::in_row, NavState::exiting, NavState::turning, NavState::headland,
+                 NavState::turning, NavState::entering, NavState::in_row, NavState::exiting,
+                 NavState::done}));
+  EXPECT_TRUE(r.reset_on_turn);  // the stack is asked to reset its tracker on the turn
+  for (NavEventKind k : {NavEventKind::row_end, NavEventKind::exit_done, NavEventKind::turn_started,
+                         NavEventKind::turn_finished, NavEventKind::entered_corridor,
+                         NavEventKind::mission_done})
+    EXPECT_NE(std::find(r.events.begin(), r.events.end(), k), r.events.end())
+        << core::enum_name(k);
+}
+
+TEST(NavigatorStates, EnteringTheWrongCorridorIsASafeStopThatSaysSo) {
+  for (int wrong : {1, -1}) {
+    const Drive r = drive(wrong);
+    EXPECT_EQ(r.last.state, NavState::safe_stop) << wrong;
+    EXPECT_EQ(r.last.stop_reason, StopReason::place_contradicts_plan) << wrong;
+    EXPECT_EQ(r.last.served, 1);
+    EXPECT_EQ(r.last.cmd.v, 0.0);
+  }
+}
+
+TEST(NavigatorStates, EnteringWithoutSeeingACorridorStopsAtTheMaximumDepth) {
+  const Drive r = drive(0, true);
+  EXPECT_EQ(r.last.state, NavState::safe_stop);
+  EXPECT_EQ(r.last.stop_reason, StopReason::perception_lost);
+  EXPECT_EQ(r.states.back(), NavState::safe_stop);
+  EXPECT_EQ(r.states[r.states.size() - 2], NavState::entering);
+}
+
+}  // namespace
+}  // namespace rownav::navigate

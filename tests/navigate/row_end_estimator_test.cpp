@@ -1,0 +1,84 @@
+#include "rownav/navigate/row_end_estimator.hpp"
+
+#include <gtest/gtest.h>
+
+namespace rownav::navigate {
+namespace {
+
+/// A corridor of two rows +-half_spacing ending `end_x` ahead of the robot, seen at `stamp`.
+track::RowTracking corridor(double end_x, double stamp, double spacing = 1.8, int support = 40) {
+  track::RowTracking t;
+  t.stamp = stamp;
+  t.status = track::TrackStatus::tracking;
+  t.row_spacing = spacing;
+  t.centre_line_base = core::Line2({0.0, 0.0}, {1.0, 0.0});
+  for (double y : {-spacing / 2.0, spacing / 2.0}) {
+    track::TrackedRow r;
+    r.line_base = core::Line2({0.0, y}, {1.0, 0.0});
+    r.x_max = end_x;
+    r.support = support;
+    r.last_seen = stamp;
+    t.rows.push_back(r);
+  }
+  t.right = 0, t.left = 1;
+  return t;
+}
+
+TEST(RowEndEstimator, RowEndsInViewAreMappedIntoOdomAlongTheCentreLine) {
+  RowEndEstimator e;
+  const core::Pose2 T(10.0, 5.0, 0.0);
+  e.update(corridor(4.0, 1.0), T, 1.0);
+  ASSERT_TRUE(e.left_end() && e.right_end() && e.end_arc() && e.centre());
+  EXPECT_TRUE(e.left_end()->isApprox(Eigen::Vector2d(14.0, 5.9)));
+  EXPECT_TRUE(e.right_end()->isApprox(Eigen::Vector2d(14.0, 4.1)));
+  EXPECT_NEAR(*e.end_arc() - e.centre()->arc(T.translation()), 4.0, 1e-9);
+  EXPECT_DOUBLE_EQ(e.spacing(), 1.8);
+}
+
+TEST(RowEndEstimator, FarThinOrStaleRowsGiveNoEnd) {
+  const RowEndEstimatorConfig c;
+  RowEndEstimator far, thin, stale;
+  far.update(corridor(c.max_range + 0.5, 1.0), {}, 1.0);   // the sensor's reach, not the end
+  thin.update(corridor(4.0, 1.0, 1.8, c.min_support - 1), {}, 1.0);
+  stale.update(corridor(4.0, 0.9), {}, 1.0);               // coasting: an older frame's extent
+  for (const auto* e : {&far, &thin, &stale}) {
+    EXPECT_FALSE(e->left_end() || e->right_end());
+    EXPECT_FALSE(e->end_arc());
+    EXPECT_TRUE(e->centre());  // the corridor itself is still known
+  }
+}
+
+TEST(RowEndEstimator, TheMedianOfTheLatestFramesDropsAnOutlier) {
+  RowEndEstimator e;
+  for (int k = 0; k < 4; ++k) e.update(corridor(4.0, k), {}, k);
+  e.update(corridor(6.5, 4.0), {}, 4.0);  // a weed on the row line stretches one frame
+  EXPECT_NEAR(e.left_end()->x(), 4.0, 1e-9);
+}
+
+TEST(RowEndEstimator, SpacingIsARunningMeanKeptAcrossCorridors) {
+  RowEndEstimator e;
+  e.update(corridor(4.0, 0.0, 1.7), {}, 0.0);
+  e.update(corridor(4.0, 1.0, 1.9), {}, 1.0);
+  EXPECT_NEAR(e.spacing(), 1.8, 1e-12);
+  e.reset();
+  EXPECT_FALSE(e.centre() || e.end_arc() || e.left_end());
+  EXPECT_NEAR(e.spacing(), 1.8, 1e-12);
+  track::RowTracking lost = corridor(4.0, 2.0);
+  lost.status = track::TrackStatus::lost;
+  e.update(lost, {}, 2.0);
+  EXPECT_FALSE(e.centre());  // only tracked frames count
+}
+
+TEST(RowEndEstimator, WithoutATrackerSpacingTheTwoEndsGiveIt) {
+  RowEndEstimator e;
+  e.update(corridor(4.0, 0.0, 0.0), {}, 0.0);  // a tracker that gives no spacing
+  EXPECT_NEAR(e.spacing(), 0.0, 1e-12);  // rows at +-0: the ends coincide
+  RowEndEstimator f;
+  track::RowTracking t = corridor(4.0, 0.0, 2.0);
+  t.row_spacing = 0.0;
+  f.update(t, {}, 0.0);
+  EXPECT_NEAR(f.spacing(), 2.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace rownav::navigate
