@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps configure build demo test bench bench-suite format clean
+.PHONY: deps configure build build-demo demo test bench bench-suite format clean
 
 deps:
 	scripts/install-deps
@@ -14,8 +14,12 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-## demo: install what is missing, build, run the main job (writes out/demo/)
-demo: build
+# Only the command line: the demo needs no test or benchmark executable.
+build-demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target rownav
+
+## demo: install what is missing, build the command line, run the main job (writes out/demo/)
+demo: build-demo
 	$(BUILD)/rownav demo --out out/demo --overwrite
 
 ## test: install what is missing, build, run every test, then the quick closed-loop benchmark
