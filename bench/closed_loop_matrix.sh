@@ -39,7 +39,8 @@ for s in "${SETUPS[@]}"; do
     d="$OUT/${field}_${robot}_${mission}_s${seed}"
     "$BIN" run --field "config/fields/$field.yaml" --robot "config/robots/$robot.yaml" \
       --mission "config/missions/$mission.yaml" --sensor "config/sensors/$sensor.yaml" \
-      --detect-config "config/detect/$det.yaml" --seed "$seed" --out "$d" --quiet >/dev/null || true
+      --detect-config "config/detect/$det.yaml" --seed "$seed" --out "$d" --overwrite --quiet \
+      >/dev/null || true
     dirs+=("$d/summary.json")
   done
   python3 - "$name" "$field" "$robot" "${dirs[@]}" <<'PY'

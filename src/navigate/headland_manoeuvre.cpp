@@ -64,6 +64,23 @@ std::vector<Eigen::Vector2d> HeadlandManoeuvre::path_odom() const {
   return out;
 }
 
+double HeadlandManoeuvre::planned_distance() const {
+  double d = 0.0;
+  for (const auto& p : primitives_)
+    for (std::size_t i = 1; i < p.path.size(); ++i) d += (p.path[i] - p.path[i - 1]).norm();
+  return d;
+}
+
+double HeadlandManoeuvre::planned_time() const {
+  double rotation = 0.0, heading = 0.0;  // the turn frame starts along the exit direction
+  for (const auto& p : primitives_)
+    if (p.rotate) {
+      rotation += std::abs(core::angle_diff(p.heading, heading));
+      heading = p.heading;
+    }
+  return planned_distance() / config_.turn_speed + rotation / config_.rotate_rate;
+}
+
 void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
                                  const Eigen::Vector2d& robot) {
   // Row ends near the row-end line, merged over the frames (odometry keeps them put).

@@ -90,16 +90,20 @@ void NavStack::on_odometry(const localize::StampedPose& s) {
     ++stats_.dropped_odometry;
 }
 
+void NavStack::measure_period(double t) {
+  // The sweep period from successive frames (levelling over the whole sweep, the watchdog).
+  if (last_cloud_stamp_ && t - *last_cloud_stamp_ > 0.0 &&
+      t - *last_cloud_stamp_ <= config_.stack.max_frame_dt)
+    sweep_period_ = t - *last_cloud_stamp_;
+  last_cloud_stamp_ = t;
+}
+
 void NavStack::on_cloud(core::PointCloud cloud) {
   const double t = cloud.stamp;
   if (!std::isfinite(t) || (last_frame_stamp_ && t <= *last_frame_stamp_) ||
       (pending_ && t <= pending_->stamp()))
     return void(++stats_.dropped_frames);
-  // The sweep period from successive sweeps (for levelling over the whole sweep).
-  if (last_cloud_stamp_ && t - *last_cloud_stamp_ > 0.0 &&
-      t - *last_cloud_stamp_ <= config_.stack.max_frame_dt)
-    sweep_period_ = t - *last_cloud_stamp_;
-  last_cloud_stamp_ = t;
+  measure_period(t);
   if (pending_) ++stats_.replaced_frames;
   pending_ = std::make_unique<Pending>(Pending{std::move(cloud)});
 }
@@ -109,6 +113,7 @@ void NavStack::on_scan(core::Scan2D scan) {
   if (!std::isfinite(t) || (last_frame_stamp_ && t <= *last_frame_stamp_) ||
       (pending_ && t <= pending_->stamp()))
     return void(++stats_.dropped_frames);
+  measure_period(t);
   if (pending_) ++stats_.replaced_frames;
   pending_ = std::make_unique<Pending>(Pending{std::move(scan)});
 }
@@ -227,10 +232,18 @@ NavCommand NavStack::command(double stamp) {
     out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
   }
   if (config_.stack.mode != StackMode::navigate) out.cmd = {};
-  if (config_.stack.mode == StackMode::navigate) apply(out);
+  if (config_.stack.mode == StackMode::navigate) {
+    apply(out);
+    watch_budget(out, stamp, T);
+    if (!terminal(out.state)) watch_odometry(out, stamp, T);
+    watch_inputs(c, out, stamp);
+  }
   if (!T || terminal(out.state)) out.cmd = {};  // never drive without a pose
   nav_cmd_ = out.cmd;
   c.cmd = limit(out.cmd, stamp);
+  // Stale inputs or a stop: zero at once, not ramped down by the acceleration limit (the
+  // robot's own drive brakes; a ramp would keep moving for max_speed / max_accel seconds).
+  if (c.health != InputHealth::ok || terminal(out.state)) c.cmd = sent_cmd_ = {};
   last_command_stamp_ = stamp;
   c.state = out.state;
   c.stop_reason = out.stop_reason;

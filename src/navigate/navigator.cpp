@@ -90,6 +90,29 @@ NavOutput Navigator::step(const NavInput& in) {
   return finish(std::move(out));
 }
 
+std::optional<StateEffort> Navigator::effort() const {
+  switch (state_) {
+    case NavState::exiting:
+      return exit_effort_;
+    case NavState::turning:
+    case NavState::headland:
+      if (manoeuvre_) return StateEffort{manoeuvre_->planned_distance(), manoeuvre_->planned_time()};
+      return std::nullopt;
+    case NavState::entering: {
+      const double d = config_.entry_max_depth + config_.exit_distance;
+      return StateEffort{d, d / config_.entry_speed};
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+NavOutput Navigator::abort(StopReason reason, double stamp, const std::string& why) {
+  NavOutput out;
+  if (state_ != NavState::done && state_ != NavState::safe_stop) stop(reason, out, stamp, why);
+  return finish(std::move(out));
+}
+
 NavOutput Navigator::hold(double stamp, const core::Pose2& T_odom_base,
                           const core::Twist2& last_cmd) {
   NavOutput out;
@@ -150,6 +173,8 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
       ends_.set_end_arc(centre->arc(in.T_odom_base.translation()) + ahead);
     }
     const double end = *ends_.end_arc();
+    const double left = end - centre->arc(in.T_odom_base.translation()) + config_.exit_distance;
+    exit_effort_ = StateEffort{std::max(0.0, left), std::max(0.0, left) / config_.row_speed};
     out.events.push_back({in.stamp, NavEventKind::row_end, order_[leg_], centre->at(end),
                           "row end detected, " +
                               fmt(end - centre->arc(in.T_odom_base.translation())) + " m ahead"});

@@ -172,3 +172,86 @@ TEST(NavStack, AMissingPartIsAConstructionError) {
 
 }  // namespace
 }  // namespace rownav::navigate
+
+namespace rownav::navigate {
+namespace {
+
+/// Drives `seconds` from `t0` with a scan every 0.04 s unless `scans` is false and encoders
+/// every 0.02 s unless `encoders` is false (`frozen`: the ticks stop changing).
+std::vector<NavCommand> drive_from(NavStack& s, double t0, double seconds, bool scans,
+                                   bool encoders, bool frozen = false) {
+  const localize::WheelOdometryConfig w;
+  const double ticks_per_m = w.ticks_per_rev / (2.0 * std::numbers::pi * w.wheel_radius);
+  std::vector<NavCommand> out;
+  static double travelled = 0.0;  // the robot's true odometry distance
+  if (t0 == 0.0) travelled = 0.0;
+  const int steps = static_cast<int>(std::lround(seconds / 0.01));
+  const int k0 = static_cast<int>(std::lround(t0 / 0.01));
+  for (int k = k0 + 1; k <= k0 + steps; ++k) {
+    const double t = 0.01 * k;
+    if (!out.empty() && !frozen) travelled += out.back().cmd.v * 0.01;
+    if (encoders && k % 2 == 0) {
+      const auto ticks = static_cast<std::int64_t>(std::llround(travelled * ticks_per_m));
+      s.on_encoders({t, ticks, ticks, 0.0});
+    }
+    if (scans && k % 4 == 0) s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
+    out.push_back(s.command(t));
+  }
+  return out;
+}
+
+bool has_event(const std::vector<NavCommand>& cmds, NavEventKind kind) {
+  for (const auto& c : cmds)
+    for (const auto& e : c.events)
+      if (e.kind == kind) return true;
+  return false;
+}
+
+TEST(NavStackWatchdog, ALidarBlackoutZeroesTheCommandWithinTheTimeoutAndMotionResumesAfter) {
+  NavStack s = make_stack();
+  const auto before = drive_from(s, 0.0, 2.0, true, true);
+  ASSERT_GT(before.back().cmd.v, 0.1);
+  const auto blind = drive_from(s, 2.0, 1.5, false, true);
+  const WatchdogConfig w;
+  for (const auto& c : blind) {
+    if (c.stamp > 2.0 + w.lidar_timeout + 0.01) {  // the last scan (1.96 s, 25 Hz) was complete at 2.0 s
+      EXPECT_EQ(c.cmd.v, 0.0) << c.stamp;
+      EXPECT_EQ(c.health, InputHealth::lidar_stale) << c.stamp;
+    }
+  }
+  EXPECT_TRUE(has_event(blind, NavEventKind::input_stale));
+  EXPECT_EQ(blind.back().state, NavState::in_row);  // held, not ended
+  const auto after = drive_from(s, 3.5, 1.0, true, true);
+  EXPECT_TRUE(has_event(after, NavEventKind::input_resumed));
+  EXPECT_GT(after.back().cmd.v, 0.1);
+  EXPECT_EQ(after.back().health, InputHealth::ok);
+}
+
+TEST(NavStackWatchdog, StaleOdometryZeroesTheCommand) {
+  NavStack s = make_stack();
+  drive_from(s, 0.0, 2.0, true, true);
+  const auto no_odom = drive_from(s, 2.0, 0.5, true, false);
+  EXPECT_EQ(no_odom.back().cmd.v, 0.0);
+  EXPECT_EQ(no_odom.back().health, InputHealth::odometry_stale);
+}
+
+TEST(NavStackWatchdog, FrozenEncodersWhileDrivingAreASafeStop) {
+  NavStack s = make_stack();
+  drive_from(s, 0.0, 2.0, true, true);
+  const auto frozen = drive_from(s, 2.0, 3.0, true, true, true);
+  EXPECT_EQ(frozen.back().state, NavState::safe_stop);
+  EXPECT_EQ(frozen.back().stop_reason, StopReason::odometry_implausible);
+  EXPECT_EQ(frozen.back().cmd.v, 0.0);
+}
+
+TEST(NavStackWatchdog, AStateMayTakeItsBudgetButNotMore) {
+  const WatchdogConfig w;
+  const StateEffort exit{4.0, 5.0};  // 4 m at 0.8 m/s
+  EXPECT_FALSE(budget_exceeded(exit, 5.0, 4.0, w));
+  EXPECT_FALSE(budget_exceeded(exit, w.budget_factor * 5.0 + w.budget_time_margin, 4.0, w));
+  EXPECT_TRUE(budget_exceeded(exit, w.budget_factor * 5.0 + w.budget_time_margin + 0.1, 4.0, w));
+  EXPECT_TRUE(budget_exceeded(exit, 5.0, w.budget_factor * 4.0 + w.budget_distance_margin + 0.1, w));
+}
+
+}  // namespace
+}  // namespace rownav::navigate

@@ -80,6 +80,10 @@ class HeadlandManoeuvre {
   const core::Pose2& T_odom_turn() const { return T_odom_turn_; }
   /// Planned path in odom (for reports).
   std::vector<Eigen::Vector2d> path_odom() const;
+  /// [m] length of the planned paths and [s] the time they take at the configured turn speed
+  /// and rotation rate (the watchdog's budget of the manoeuvre).
+  double planned_distance() const;
+  double planned_time() const;
 
  private:
   void reanchor(const std::vector<Eigen::Vector2d>& ends_turn, const Eigen::Vector2d& robot);

@@ -15,6 +15,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "rownav/control/controller.hpp"
@@ -47,6 +48,9 @@ struct FrameReport {
   double latency = 0.0;   ///< [s] wall time of the frame through the chain
 };
 
+/// Whether the inputs are fresh enough to move (NavStack's watchdog).
+enum class InputHealth : std::uint8_t { ok, lidar_stale, odometry_stale };
+
 /// The answer of command().
 struct NavCommand {
   double stamp = 0.0;
@@ -57,6 +61,9 @@ struct NavCommand {
   int served = 0;
   std::vector<NavEvent> events;       ///< what happened in this call
   std::optional<FrameReport> frame;   ///< the LiDAR frame processed in this call, if any
+  InputHealth health = InputHealth::ok;  ///< not ok: the command is zero until inputs are fresh
+  double lidar_age = 0.0;     ///< [s] since the newest LiDAR frame was complete (inf: none yet)
+  double odometry_age = 0.0;  ///< [s] since the newest odometry sample (inf: none yet)
 };
 
 /// Inputs dropped (late, duplicate, non-finite) and frames not processed, per stream.
@@ -67,6 +74,11 @@ struct NavStackStats {
   std::uint64_t replaced_frames = 0;  ///< a newer frame came before command() processed it
   std::uint64_t late_commands = 0;    ///< command() with a stamp older than the previous one
 };
+
+/// The watchdog's budget of a state: factor x its planned time / distance + the margins.
+/// Returns a reason ("took 31.2 s / 4.0 m, budget 13.6 s / 10.4 m") when exceeded.
+std::optional<std::string> budget_exceeded(const StateEffort& planned, double elapsed,
+                                           double distance, const WatchdogConfig& config);
 
 /// The navigation stack. Not thread-safe (feed it from one thread); never throws after
 /// construction.
@@ -109,8 +121,13 @@ class NavStack {
   FrameReport process_frame(Pending& frame, const std::optional<core::Pose2>& T);
   core::RowObservation detect_frame(Pending& frame, bool& levelled);
   NavOutput navigate_frame(double stamp, const core::Pose2& T, FrameReport& report);
+  void measure_period(double frame_stamp);
   void apply(const NavOutput& out);
   core::Twist2 limit(const core::Twist2& cmd, double stamp);
+  void watch_inputs(NavCommand& c, NavOutput& out, double stamp);
+  void watch_budget(NavOutput& out, double stamp, const std::optional<core::Pose2>& T);
+  void watch_odometry(NavOutput& out, double stamp, const std::optional<core::Pose2>& T);
+  void safe_stop(NavOutput& out, StopReason reason, double stamp, const std::string& why);
 
   NavStackConfig config_;
   NavStackParts parts_;
@@ -120,11 +137,24 @@ class NavStack {
   localize::PoseHistory external_;
   std::deque<core::ImuSample> imu_;
   std::unique_ptr<Pending> pending_;
-  std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;
+  std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;  // last_cloud_stamp_: any frame
   double sweep_period_ = 0.0;
   double last_encoder_ = -1e300, last_gnss_ = -1e300;
   core::Twist2 nav_cmd_, sent_cmd_;  // navigator's last command, the last limited command
   NavStackStats stats_;
+  // Watchdog: input health, and the current state's start, distance driven and budget.
+  InputHealth health_ = InputHealth::ok;
+  bool inputs_seen_ = false;
+  int phase_ = -1;
+  double phase_start_ = 0.0, phase_distance_ = 0.0;
+  std::optional<core::Pose2> phase_last_T_;
+  std::optional<StateEffort> phase_effort_;
+  struct Motion {
+    double stamp, commanded, measured;  // [s], [m] since the previous command
+  };
+  std::deque<Motion> motion_;
+  double commanded_sum_ = 0.0, measured_sum_ = 0.0;
+  std::optional<core::Pose2> motion_last_T_;
 };
 
 }  // namespace rownav::navigate

@@ -35,6 +35,49 @@ enum class StackMode : std::uint8_t {
   detect     ///< detect only (`rownav detect`): no odometry needed
 };
 
+/// NavStack's watchdog (issue 13, "driving blind"): no motion from stale inputs, and a budget
+/// for every state whose end is decided by odometry alone.
+struct WatchdogConfig {
+  /// [s] no new LiDAR frame for this long past its sweep period: zero command until one comes
+  /// (the navigator's perception_timeout in a row; here in every state)
+  double lidar_timeout = 0.5;
+  double odometry_timeout = 0.2;  ///< [s] no odometry sample for this long: zero command
+  /// [-] exiting, a turn or an entry may take this many times its planned distance and time
+  /// (Navigator::effort) before a safe stop `budget_exceeded`
+  double budget_factor = 2.0;
+  double budget_time_margin = 3.0;      ///< [s] added to the time budget
+  double budget_distance_margin = 2.0;  ///< [m] added to the distance budget
+  /// Odometry against the commands: over the last `plausibility_window` seconds the robot was
+  /// commanded at least `plausibility_distance` metres forward or back but the odometry moved
+  /// less than `plausibility_ratio` of that -> safe stop `odometry_implausible` (a frozen or
+  /// broken encoder, or stalled wheels: driving on would be blind)
+  double plausibility_window = 2.0;    ///< [s]
+  double plausibility_distance = 1.0;  ///< [m]
+  double plausibility_ratio = 0.25;    ///< [-]
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("lidar_timeout", s.lidar_timeout);
+    v("odometry_timeout", s.odometry_timeout);
+    v("budget_factor", s.budget_factor);
+    v("budget_time_margin", s.budget_time_margin);
+    v("budget_distance_margin", s.budget_distance_margin);
+    v("plausibility_window", s.plausibility_window);
+    v("plausibility_distance", s.plausibility_distance);
+    v("plausibility_ratio", s.plausibility_ratio);
+  }
+  void validate() const {
+    core::check_positive(lidar_timeout, "lidar_timeout");
+    core::check_positive(odometry_timeout, "odometry_timeout");
+    core::check(budget_factor >= 1.0, "budget_factor", "must be >= 1");
+    core::check_non_negative(budget_time_margin, "budget_time_margin");
+    core::check_non_negative(budget_distance_margin, "budget_distance_margin");
+    core::check_positive(plausibility_window, "plausibility_window");
+    core::check_positive(plausibility_distance, "plausibility_distance");
+    core::check_range(plausibility_ratio, 0.0, 1.0, "plausibility_ratio");
+  }
+};
+
 /// NavStack's own settings (input handling between the sensors and the chain).
 struct StackConfig {
   StackMode mode = StackMode::navigate;              ///< how far the chain runs
@@ -58,6 +101,7 @@ struct StackConfig {
   /// robot in a narrow row), an obstacle is >= 3 points after preprocessing (a lone shoot or
   /// weed blade stalled the demo at zero speed with 1 point and a 0.1 m margin).
   control::FrontRectConfig front = {.margin = 0.0, .min_points = 3};
+  WatchdogConfig watchdog;  ///< stale inputs and state budgets
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -73,6 +117,7 @@ struct StackConfig {
     v("command_period", s.command_period);
     v("max_frame_dt", s.max_frame_dt);
     v("front", s.front);
+    v("watchdog", s.watchdog);
   }
   void validate() const {
     core::check_positive(sweep_period, "sweep_period");
@@ -83,6 +128,7 @@ struct StackConfig {
     core::check_positive(command_period, "command_period");
     core::check_positive(max_frame_dt, "max_frame_dt");
     core::validate_nested(front, "front");
+    core::validate_nested(watchdog, "watchdog");
   }
 };
 

@@ -50,7 +50,9 @@ enum class StopReason : std::uint8_t {
   perception_lost,
   obstacle,
   place_contradicts_plan,
-  timeout
+  timeout,
+  budget_exceeded,      ///< a state took far longer / farther than planned (NavStack's watchdog)
+  odometry_implausible  ///< commanded motion the odometry did not see (NavStack's watchdog)
 };
 /// Something that happened (events timeline of the report).
 enum class NavEventKind : std::uint8_t {
@@ -62,7 +64,9 @@ enum class NavEventKind : std::uint8_t {
   turn_finished,
   entered_corridor,
   safe_stop,
-  mission_done
+  mission_done,
+  input_stale,   ///< the watchdog zeroes the command: LiDAR or odometry too old
+  input_resumed  ///< fresh inputs again: the command is released
 };
 
 /// One event.
@@ -147,6 +151,14 @@ struct NavOutput {
   int served = 0;                ///< corridors driven end to end
 };
 
+/// What a state is planned to take, from its geometry when it starts (exiting: the distance
+/// left to the exit point; a turn: its planned paths and rotations; entering: the maximum
+/// entry depth). The watchdog's budgets are multiples of it.
+struct StateEffort {
+  double distance = 0.0;  ///< [m]
+  double time = 0.0;      ///< [s] at the state's speeds
+};
+
 /// The mission state machine. step() / hold() never throw.
 class Navigator {
  public:
@@ -163,6 +175,10 @@ class Navigator {
   NavOutput hold(double stamp, const core::Pose2& T_odom_base, const core::Twist2& last_cmd);
 
   NavState state() const { return state_; }
+  /// Planned effort of the current state (nullopt in a row and in terminal states).
+  std::optional<StateEffort> effort() const;
+  /// Safe stop from outside (NavStack's watchdog): state safe_stop with `reason`, an event.
+  NavOutput abort(StopReason reason, double stamp, const std::string& why);
   StopReason stop_reason() const { return reason_; }
   /// Row-end points estimated so far (odom frame): the ends of every corridor left.
   const std::vector<Eigen::Vector2d>& row_ends_odom() const { return row_ends_; }
@@ -199,6 +215,7 @@ class Navigator {
   RobotLimits robot_;
   std::vector<Eigen::Vector2d> row_ends_;
   std::optional<core::Line2> entry_seen_;  // target corridor centre seen while entering (odom)
+  std::optional<StateEffort> exit_effort_;  // set when the exit starts
 };
 
 }  // namespace rownav::navigate
@@ -219,19 +236,21 @@ struct rownav::core::EnumNames<rownav::navigate::NavState> {
 template <>
 struct rownav::core::EnumNames<rownav::navigate::StopReason> {
   using E = rownav::navigate::StopReason;
-  static constexpr std::array<std::pair<E, std::string_view>, 6> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 8> values{
       {{E::none, "none"},
        {E::done, "done"},
        {E::perception_lost, "perception_lost"},
        {E::obstacle, "obstacle"},
        {E::place_contradicts_plan, "place_contradicts_plan"},
-       {E::timeout, "timeout"}}};
+       {E::timeout, "timeout"},
+       {E::budget_exceeded, "budget_exceeded"},
+       {E::odometry_implausible, "odometry_implausible"}}};
 };
 
 template <>
 struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
   using E = rownav::navigate::NavEventKind;
-  static constexpr std::array<std::pair<E, std::string_view>, 9> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 11> values{
       {{E::row_end, "row_end"},
        {E::exit_done, "exit_done"},
        {E::turn_started, "turn_started"},
@@ -240,5 +259,7 @@ struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
        {E::turn_finished, "turn_finished"},
        {E::entered_corridor, "entered_corridor"},
        {E::safe_stop, "safe_stop"},
-       {E::mission_done, "mission_done"}}};
+       {E::mission_done, "mission_done"},
+       {E::input_stale, "input_stale"},
+       {E::input_resumed, "input_resumed"}}};
 };
