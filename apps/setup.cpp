@@ -40,9 +40,11 @@ sim::SimConfig load_sensors(const std::optional<std::filesystem::path>& file,
   sim::SimConfig config = file ? io::load_sim_config(*file) : sim::SimConfig{};
   if (!lidar_preset_override.empty()) {
     const Eigen::Vector3d xyz = config.lidar.mount_xyz, rpy = config.lidar.mount_rpy_deg;
+    const double max_offset = config.lidar.max_mount_offset;
     config.lidar = sim::lidar_preset(lidar_preset_override);
     config.lidar.mount_xyz = xyz;
     config.lidar.mount_rpy_deg = rpy;
+    config.lidar.max_mount_offset = max_offset;
   }
   return config;
 }

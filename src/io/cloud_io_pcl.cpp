@@ -7,33 +7,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <map>
-#include <sstream>
 #include <string>
 
+#include "cloud_header_check.hpp"
 #include "rownav/io/cloud_io.hpp"
-#include "rownav/io/csv.hpp"
 #include "rownav/io/input_error.hpp"
 
 namespace rownav::io {
 namespace {
-
-bool parse_rownav_comment(const std::string& line, core::PointCloud& out) {
-  const auto stamp = line.find("stamp="), flags = line.find(" flags="),
-             frame = line.find(" frame_id=");
-  if (stamp == std::string::npos || flags == std::string::npos || frame == std::string::npos ||
-      flags < stamp || frame < flags)
-    return false;
-  parse_double(std::string_view(line).substr(stamp + 6, flags - stamp - 6), out.stamp);
-  const std::string f = line.substr(flags + 7, frame - flags - 7);
-  out.has_intensity = f.find('i') != std::string::npos;
-  out.has_ring = f.find('r') != std::string::npos;
-  out.has_time = f.find('t') != std::string::npos;
-  out.frame_id = line.substr(frame + 10);
-  return true;
-}
 
 /// Value of one field element as a double, whatever its PCL datatype.
 double field_value(const std::uint8_t* p, std::uint8_t datatype) {
@@ -72,96 +54,6 @@ const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& c, std::string_v
 
 bool is_integer_type(std::uint8_t t) {
   return t != pcl::PCLPointField::FLOAT32 && t != pcl::PCLPointField::FLOAT64;
-}
-
-std::vector<std::string> words(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> out;
-  for (std::string w; in >> w;) out.push_back(w);
-  return out;
-}
-
-using PcdKeys = std::map<std::string, std::vector<std::string>>;
-
-[[noreturn]] void bad_pcd(const std::string& name, const std::string& why) {
-  throw InputError(name, "", "not a valid PCD file (" + why + ")");
-}
-
-/// Header lines up to DATA; `data_offset` = first byte after the DATA line. Reads rownav's own
-/// comment "# rownav stamp=<s> flags=<irt|-> frame_id=<id>" into `meta` (true if found).
-PcdKeys read_pcd_keys(std::istream& in, const std::string& name, core::PointCloud& meta,
-                      bool& has_meta) {
-  PcdKeys keys;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.rfind("# rownav ", 0) == 0) has_meta = parse_rownav_comment(line, meta);
-    if (line.empty() || line[0] == '#') continue;
-    auto w = words(line);
-    if (w.empty()) continue;
-    const std::string key = w[0];
-    w.erase(w.begin());
-    if (keys.count(key)) bad_pcd(name, "duplicate " + key);
-    keys[key] = w;
-    if (key == "DATA") return keys;
-  }
-  bad_pcd(name, "no DATA line");
-}
-
-/// Bytes per point; checks FIELDS / SIZE / TYPE / COUNT agree.
-std::int64_t pcd_point_step(PcdKeys& keys, const std::string& name) {
-  const std::size_t nf = keys["FIELDS"].size();
-  if (!keys.count("COUNT")) keys["COUNT"] = std::vector<std::string>(nf, "1");
-  if (nf == 0 || keys["SIZE"].size() != nf || keys["TYPE"].size() != nf ||
-      keys["COUNT"].size() != nf)
-    bad_pcd(name, "FIELDS, SIZE, TYPE and COUNT disagree");
-  std::int64_t step = 0;
-  for (std::size_t i = 0; i < nf; ++i) {
-    const std::string& sz = keys["SIZE"][i];
-    const std::string& ty = keys["TYPE"][i];
-    std::int64_t size = 0, count = 0;
-    const bool ok =
-        parse_int64(sz, size) && parse_int64(keys["COUNT"][i], count) && count >= 1 &&
-        count < 1000000 &&
-        ((ty == "F" && (size == 4 || size == 8)) ||
-         ((ty == "I" || ty == "U") && (size == 1 || size == 2 || size == 4 || size == 8)));
-    if (!ok) bad_pcd(name, "field " + keys["FIELDS"][i] + ": TYPE " + ty + " SIZE " + sz);
-    step += size * count;
-  }
-  return step;
-}
-
-/// Checks a PCD file before PCL sees it: PCL 1.13 crashes on some malformed files.
-bool check_pcd(const std::filesystem::path& file, const std::string& name, core::PointCloud& meta) {
-  std::ifstream in(file, std::ios::binary);
-  bool has_meta = false;
-  PcdKeys keys = read_pcd_keys(in, name, meta, has_meta);
-  const std::uint64_t data_offset = static_cast<std::uint64_t>(in.tellg());
-  for (const char* k : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS"})
-    if (!keys.count(k)) bad_pcd(name, std::string("no ") + k);
-  const std::int64_t step = pcd_point_step(keys, name);
-  if (!keys.count("HEIGHT")) keys["HEIGHT"] = {"1"};
-  std::int64_t width = 0, height = 0, points = 0;
-  if (keys["WIDTH"].size() != 1 || keys["HEIGHT"].size() != 1 || keys["POINTS"].size() != 1 ||
-      !parse_int64(keys["WIDTH"][0], width) || !parse_int64(keys["HEIGHT"][0], height) ||
-      !parse_int64(keys["POINTS"][0], points) || width < 0 || height < 0 ||
-      width * height != points)
-    bad_pcd(name, "WIDTH x HEIGHT != POINTS");
-  const auto& data = keys["DATA"];
-  const std::uint64_t available = std::filesystem::file_size(file) - data_offset;
-  const auto need = static_cast<std::uint64_t>(points * step);
-  if (data.size() == 1 && data[0] == "ascii") return has_meta;
-  if (data.size() == 1 && data[0] == "binary") {
-    if (available < need) bad_pcd(name, "binary data truncated");
-    return has_meta;
-  }
-  if (data.size() != 1 || data[0] != "binary_compressed")
-    bad_pcd(name, "DATA must be ascii, binary or binary_compressed");
-  std::uint32_t sizes[2] = {0, 0};
-  if (need > 0 && (available < 8 || !in.read(reinterpret_cast<char*>(sizes), 8) ||
-                   sizes[1] != need || available < 8 + std::uint64_t{sizes[0]}))
-    bad_pcd(name, "compressed data truncated or inconsistent");
-  return has_meta;
 }
 
 /// Per-point time [s] relative to the stamp; sets has_time and possibly the stamp.
@@ -249,7 +141,8 @@ core::PointCloud read_cloud(const std::filesystem::path& file) {
                  [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   pcl::PCLPointCloud2 cloud;
   core::PointCloud meta;
-  const bool has_meta = ext == ".pcd" && check_pcd(file, name, meta);
+  const bool has_meta = ext == ".pcd" && detail::check_pcd_header(file, name, meta);
+  if (ext == ".ply") detail::check_ply_header(file, name);
   {
     const QuietPcl quiet;
     if (ext == ".pcd") {

@@ -23,8 +23,16 @@ sim::Field build_field(const sim::FieldConfig& config, const std::filesystem::pa
   options.blocks = lc.blocks;
   options.origin_lat_deg = lc.origin_lat_deg;
   options.origin_lon_deg = lc.origin_lon_deg;
-  sim::RowLayout layout = read_layout(resolve(lc.file, base_dir), options);
+  options.limits = lc.limits;
+  const std::filesystem::path file = resolve(lc.file, base_dir);
+  sim::RowLayout layout = read_layout(file, options);
   sim::order_layout_rows(layout);
+  // Weeds are scattered over the corridor width: bounded before dressing.
+  if (const double spacing = sim::estimate_row_spacing(layout); spacing > lc.limits.max_row_spacing)
+    throw InputError(file.string(), "",
+                     "layout.limits.max_row_spacing: adjacent rows are " +
+                         core::detail::show(spacing) + " m apart (median), more than " +
+                         core::detail::show(lc.limits.max_row_spacing) + " m");
   std::optional<sim::TriangleMesh> instance, terrain;
   if (!lc.instance_mesh.empty())
     instance = read_mesh(resolve(lc.instance_mesh, base_dir), sim::SurfaceClass::canopy);

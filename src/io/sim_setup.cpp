@@ -35,7 +35,7 @@ sim::SimConfig decode_sim_config(const YAML::Node& node, const std::string& file
   try {
     config.validate();
   } catch (const std::invalid_argument& e) {
-    throw InputError(file, "", e.what());
+    detail::yaml_fail_validation(file, node, "", e.what());  // at the offending key's line:col
   }
   return config;
 }

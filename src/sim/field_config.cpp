@@ -34,6 +34,16 @@ std::vector<std::vector<std::size_t>> rows_by_block(const RowLayout& layout) {
 
 }  // namespace
 
+void LayoutLimits::validate() const {
+  core::check_range(max_extent, 1.0, 100000.0, "max_extent");
+  core::check_range(max_total_row_length, 1.0, 1e7, "max_total_row_length");
+  core::check_range(max_rows, 1, 1000000, "max_rows");
+  core::check_range(max_plants, 0, 10000000, "max_plants");
+  core::check_range(max_row_spacing, 0.5, 1000.0, "max_row_spacing");
+  // A deep limit would let nested values overflow the stack again (the JSON library recurses).
+  core::check_range(max_json_depth, 8, 1000, "max_json_depth");
+}
+
 void LayoutConfig::validate() const {
   core::check(!file.empty(), "file", "must name a CSV or GeoJSON layout");
   core::check_range(instance_spacing, 0.1, 100.0, "instance_spacing");
@@ -43,6 +53,7 @@ void LayoutConfig::validate() const {
     core::check_range(origin_lat_deg, -90.0, 90.0, "origin_lat_deg");
     core::check_range(origin_lon_deg, -180.0, 180.0, "origin_lon_deg");
   }
+  core::validate_nested(limits, "limits");
 }
 
 void FieldConfig::validate() const {

@@ -88,7 +88,14 @@ void LidarConfig::validate() const {
   core::check_range(dropout_probability, 0.0, 1.0, "dropout_probability");
   core::check_range(foliage_pass_probability, 0.0, 1.0, "foliage_pass_probability");
   core::check_non_negative(intensity_noise_std, "intensity_noise_std");
+  check(std::isfinite(max_mount_offset) && max_mount_offset > 0.0, "max_mount_offset",
+        "must be finite and > 0");
   check(mount_xyz.allFinite(), "mount_xyz", "must be finite");
+  check(mount_xyz.cwiseAbs().maxCoeff() <= max_mount_offset, "mount_xyz",
+        "every component must be within +-max_mount_offset = " +
+            core::detail::show(max_mount_offset) + " m (got [" + core::detail::show(mount_xyz.x()) +
+            ", " + core::detail::show(mount_xyz.y()) + ", " + core::detail::show(mount_xyz.z()) +
+            "])");
   check(mount_rpy_deg.allFinite(), "mount_rpy_deg", "must be finite");
 }
 

@@ -18,6 +18,18 @@ namespace {
 
 constexpr int kPacket = 16;
 
+/// Embree asserts (and aborts) on a ray whose origin or direction component exceeds its
+/// FLT_LARGE (1.844e18): such rays miss instead. Inputs are bounded long before (a LiDAR mount
+/// within LidarConfig::max_mount_offset, a layout within LayoutLimits::max_extent); this is the
+/// last guard, so no input reaches the assertion.
+constexpr float kMaxRayCoordinate = 1e18f;
+
+bool castable(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir) {
+  return origin.allFinite() && dir.allFinite() &&
+         origin.cwiseAbs().maxCoeff() <= kMaxRayCoordinate &&
+         dir.cwiseAbs().maxCoeff() <= kMaxRayCoordinate;
+}
+
 /// Flush-to-zero / denormals-are-zero for the duration of a query, as Embree recommends
 /// (denormals slow traversal down); the caller's floating-point mode is restored afterwards.
 class FlushDenormals {
@@ -128,7 +140,7 @@ void RayCaster::Impl::cast16(const Eigen::Vector3f* o, const Eigen::Vector3f* d,
   for (int i = 0; i < kPacket; ++i) {
     const int j = i < count ? i : count - 1;
     const float tn = t_min ? t_min[j] : t_min_all;
-    valid[i] = i < count && o[j].allFinite() && d[j].allFinite() && tn <= t_max ? -1 : 0;
+    valid[i] = i < count && castable(o[j], d[j]) && tn <= t_max ? -1 : 0;
     rh.ray.org_x[i] = o[j].x();
     rh.ray.org_y[i] = o[j].y();
     rh.ray.org_z[i] = o[j].z();
@@ -167,7 +179,7 @@ RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
 RayHit RayCaster::cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& unit_dir, float t_min,
                        float t_max) const {
   RayHit out;
-  if (!origin.allFinite() || !unit_dir.allFinite() || !(t_min <= t_max)) return out;
+  if (!castable(origin, unit_dir) || !(t_min <= t_max)) return out;
   RTCRayHit rh;
   rh.ray.org_x = origin.x();
   rh.ray.org_y = origin.y();

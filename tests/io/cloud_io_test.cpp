@@ -189,6 +189,42 @@ TEST_F(CloudIoTest, BadFilesGiveOneLineErrors) {
   EXPECT_FALSE(ascii.empty());
 }
 
+TEST_F(CloudIoTest, HeadersPclWouldCrashOnAreRefusedWithTheirLine) {
+  const std::string body =
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
+  // PCL 1.13 crashes on an unknown first keyword (a corrupted "# .PCD" comment, "FERSION").
+  for (const std::string first : {"FOO 1\n", "3 .PCD v0.7\n", "FERSION 0.7\n"}) {
+    const std::string e = error_of(write("key.pcd", first + body));
+    EXPECT_NE(e.find("key.pcd:line 1: not a valid PCD file (unknown header keyword"),
+              std::string::npos)
+        << e;
+  }
+  // More points than the data can hold: PCL would allocate them all.
+  const std::string many =
+      error_of(write("many.pcd",
+                     "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2000000000\nHEIGHT 1\n"
+                     "POINTS 2000000000\nDATA ascii\n1 2 3\n"));
+  EXPECT_NE(many.find("do not fit"), std::string::npos) << many;
+  const std::string wide =
+      error_of(write("wide.pcd",
+                     "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4294967296\nHEIGHT 1\n"
+                     "POINTS 0\nDATA ascii\n"));
+  EXPECT_NE(wide.find(":line 4: not a valid PCD file (WIDTH must be"), std::string::npos) << wide;
+  // PLY counts of 2^32 / -2^63 trip a PCL assertion; counts beyond the data are refused too.
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex ";
+  const std::string props = "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (const std::string n : {"4294967296", "-9223372036854775808", "1000"}) {
+    const std::string e = error_of(write("n.ply", ply + n + props + "1 2 3\n"));
+    EXPECT_NE(e.find("n.ply:line 3: not a valid PLY file (element 'vertex'"), std::string::npos)
+        << e;
+  }
+  const std::string bin =
+      error_of(write("b.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2" + props +
+                                  std::string(12, '\0')));
+  EXPECT_NE(bin.find("2 elements do not fit the 12 bytes"), std::string::npos) << bin;
+  EXPECT_EQ(read_cloud(write("ok.ply", ply + "1" + props + "1 2 3\n")).size(), 1u);
+}
+
 TEST(PointsCsv, CornRowsDataset) {
   const auto clouds = read_points_csv(fs::path(ROWNAV_SHARED_DATA) / "corn_rows_2d/scans.csv");
   ASSERT_EQ(clouds.size(), 1630u);

@@ -63,7 +63,8 @@ TEST(ConfigFiles, SensorsLoadStrictlyWithPresets) {
     ASSERT_NO_THROW(c = load_sim_config(f)) << f;
     EXPECT_GT(c.lidar.columns, 0) << f;
   }
-  const sim::SimConfig planar = load_sim_config(fs::path(ROWNAV_SOURCE_DIR) / "config/sensors/lms_1081.yaml");
+  const sim::SimConfig planar =
+      load_sim_config(fs::path(ROWNAV_SOURCE_DIR) / "config/sensors/lms_1081.yaml");
   EXPECT_EQ(planar.lidar.kind, sim::LidarKind::planar);
   EXPECT_EQ(planar.lidar.columns, 1081);
   EXPECT_DOUBLE_EQ(planar.lidar.mount_xyz.z(), 0.40);  // the file overrides the preset's mount
@@ -102,6 +103,27 @@ TEST(ConfigFiles, PresetOverrideErrorsNameTheFileAndKey) {
     o << "lidar:\n  preset: os9\n";
   }
   EXPECT_THROW(load_sim_config(f), InputError);
+  fs::remove_all(dir);
+}
+
+TEST(ConfigFiles, AFarOffLidarMountIsRefusedAtItsKey) {
+  // Rays cast from a mount at ~1e19 m made Embree abort (issue 13); the limit is a field.
+  const fs::path dir = fs::temp_directory_path() / "rownav_config_mount_test";
+  fs::create_directories(dir);
+  const fs::path f = dir / "mount.yaml";
+  std::ofstream(f) << "lidar:\n  preset: os1_16\n  mount_xyz: [1e19, 0.0, 0.75]\n";
+  try {
+    load_sim_config(f);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.position(), "3:3") << e.what();
+    EXPECT_NE(std::string(e.what()).find("lidar.mount_xyz: every component must be within "
+                                         "+-max_mount_offset = 100 m"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ofstream(f) << "lidar:\n  mount_xyz: [150, 0, 1]\n  max_mount_offset: 200\n";
+  EXPECT_DOUBLE_EQ(load_sim_config(f).lidar.mount_xyz.x(), 150.0);
   fs::remove_all(dir);
 }
 

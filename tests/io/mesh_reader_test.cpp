@@ -57,6 +57,42 @@ TEST(MeshReader, BadFilesThrowInputError) {
                InputError);
 }
 
+/// A one-quad Collada terrain whose position accessor has `stride` (3 = valid).
+std::string collada_quad(const std::string& stride) {
+  return "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+         "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+         "<library_geometries><geometry id=\"g\"><mesh>\n"
+         "<source id=\"p\"><float_array id=\"pa\" count=\"12\">-10 -10 0 40 -10 0 40 20 0 -10 "
+         "20 0</float_array>\n"
+         "<technique_common><accessor source=\"#pa\" count=\"4\" stride=\"" +
+         stride +
+         "\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param "
+         "name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+         "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
+         "<triangles count=\"2\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>"
+         "<p>0 1 2 0 2 3</p></triangles>\n"
+         "</mesh></geometry></library_geometries>\n"
+         "<library_visual_scenes><visual_scene id=\"s\"><node id=\"n\"><instance_geometry "
+         "url=\"#g\"/></node></visual_scene></library_visual_scenes>\n"
+         "<scene><instance_visual_scene url=\"#s\"/></scene>\n</COLLADA>\n";
+}
+
+TEST(MeshReader, ColladaAccessorsMustStayInsideTheirArrays) {
+  const sim::TriangleMesh m =
+      read_mesh(write_temp("quad.dae", collada_quad("3")), sim::SurfaceClass::ground);
+  EXPECT_EQ(m.triangle_count(), 2u);
+  // assimp 5 reads a huge stride far past the array (SIGSEGV): refused before it sees the file.
+  for (const char* stride : {"4", "65536", "4294967295", "999999999999", "-1"}) {
+    try {
+      read_mesh(write_temp("stride.dae", collada_quad(stride)), sim::SurfaceClass::ground);
+      ADD_FAILURE() << stride;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.position(), "5:19") << e.what();
+      EXPECT_NE(std::string(e.what()).find("stride"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(MeshReader, VineInstancedAlongARow) {
   const sim::TriangleMesh vine = read_mesh(kVine, sim::SurfaceClass::canopy);
   sim::TerrainConfig tc;

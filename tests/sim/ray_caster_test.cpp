@@ -108,6 +108,20 @@ TEST(RayCaster, SkyMissesAndRangeLimits) {
   EXPECT_FALSE(rc.cast(nan_o, Eigen::Vector3f(0, 0, -1), 0.0f, 100.0f).hit());
 }
 
+TEST(RayCaster, RaysBeyondEmbreesRangeMissInsteadOfAborting) {
+  // Embree asserts on an origin component beyond ~1.8e18 (a LiDAR mounted at 1e19 m aborted
+  // rownav, issue 13): such rays miss, in a packet too, and the others still hit.
+  const RayCaster rc(plane(0.0f, 50.0f, 4, SurfaceClass::ground));
+  const Eigen::Vector3f down(0, 0, -1);
+  std::vector<Eigen::Vector3f> o(16, Eigen::Vector3f(0, 0, 1)), d(16, down);
+  o[3] = Eigen::Vector3f(1e19f, 0, 1);
+  o[7] = Eigen::Vector3f(0, -3e38f, 1);
+  std::vector<RayHit> hits(16);
+  rc.cast_batch(o.data(), d.data(), o.size(), 0.0f, 100.0f, hits.data());
+  for (std::size_t i = 0; i < hits.size(); ++i) EXPECT_EQ(hits[i].hit(), i != 3 && i != 7) << i;
+  EXPECT_FALSE(rc.cast(o[3], down, 0.0f, 100.0f).hit());
+}
+
 TEST(RayCaster, BoxFacesLabelsAndNormals) {
   TriangleMesh world = plane(0.0f, 50.0f, 4, SurfaceClass::ground);
   world.append(box({4.0f, -1.0f, 0.0f}, {5.0f, 1.0f, 2.0f}, SurfaceClass::post));

@@ -10,7 +10,8 @@
 /// `properties.type` is `row` or absent is a row; `properties.block` (string or number) names its
 /// block. A Point whose `properties.kind` names a PlantKind (`vine`, `tree`, `crop`, `post`,
 /// `end_post`) is a plant, assigned to the nearest row. Everything else (block outlines,
-/// drainage lines, other points) is ignored.
+/// drainage lines, other points) is ignored. `type`, `block` and `kind` must be strings,
+/// numbers or booleans (an array or object there is an error).
 ///
 /// **CSV**: `#` comments and blank lines are skipped; the first other line is a header of
 /// comma-separated column names, in any order: `row` (row label), either `x,y` (metres, local
@@ -29,6 +30,7 @@
 
 #include "rownav/io/input_error.hpp"
 #include "rownav/sim/field.hpp"
+#include "rownav/sim/field_config.hpp"
 
 namespace rownav::io {
 
@@ -37,7 +39,13 @@ struct LayoutReadOptions {
   std::vector<std::string> blocks;  ///< block names to keep (empty = all)
   double origin_lat_deg = std::numeric_limits<double>::quiet_NaN();  ///< [deg] NaN = first point
   double origin_lon_deg = std::numeric_limits<double>::quiet_NaN();  ///< [deg] NaN = first point
+  sim::LayoutLimits limits;  ///< rows, plants, extent, total row length, JSON depth
 };
+
+/// Every reader enforces options.limits: at most max_rows rows and max_plants plants, rows
+/// summing to at most max_total_row_length, every point (rows and plants kept) in a box of
+/// max_extent (the error names the point farthest from the others), GeoJSON nested at most
+/// max_json_depth deep; an InputError names the limit's key (`layout.limits.max_rows`, ...).
 
 /// Reads a GeoJSON layout. Blocks are numbered in order of first appearance (of kept rows).
 /// @throws InputError naming the feature index on malformed content, or when no row is left

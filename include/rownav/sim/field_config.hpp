@@ -15,6 +15,39 @@
 
 namespace rownav::sim {
 
+/// Bounds on an imported layout, checked while it is read, before anything is dressed or cast:
+/// one mistyped coordinate (latitude 0 instead of 51.5, a post at x = 4294967296) otherwise
+/// makes rows thousands of km long, and dressing them runs for hours or exhausts memory.
+struct LayoutLimits {
+  /// [m] largest side of the box around every row point and plant (local frame): the largest
+  /// vineyard and orchard blocks span ~2 km, and the flat local frame is meant for a field.
+  double max_extent = 5000.0;
+  /// [m] summed length of the rows kept: dressing time and memory grow with it (the whole
+  /// 9 km AGRIDS vineyard takes ~3 s and ~0.4 GB, so 50 km ~15 s and ~2 GB).
+  double max_total_row_length = 50000.0;
+  int max_rows = 2000;  ///< [-] rows kept: 5 km at 2.5 m spacing
+  /// [-] plants and posts listed in the layout file, each dressed like a vine: the vines of
+  /// max_total_row_length at 1.2 m spacing
+  int max_plants = 40000;
+  /// [m] largest median distance between adjacent rows of a block (the corridor width the
+  /// weeds are scattered over): orchards stay below 8 m; wider rows are no corridors.
+  double max_row_spacing = 20.0;
+  /// [-] deepest nesting of GeoJSON arrays / objects: a layout needs 8 (a MultiPolygon
+  /// position); very deep nesting (~70,000) overflows the stack of the JSON library.
+  int max_json_depth = 64;
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("max_extent", s.max_extent);
+    v("max_total_row_length", s.max_total_row_length);
+    v("max_rows", s.max_rows);
+    v("max_plants", s.max_plants);
+    v("max_row_spacing", s.max_row_spacing);
+    v("max_json_depth", s.max_json_depth);
+  }
+  void validate() const;
+};
+
 /// An imported row layout (GeoJSON / CSV) and optional meshes. Rows are dressed with
 /// FieldConfig::vineyard (its rows, row_length, row_spacing and curvature fields are unused;
 /// the row spacing is estimated from the layout).
@@ -29,6 +62,7 @@ struct LayoutConfig {
       std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
   double origin_lon_deg =
       std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
+  LayoutLimits limits;  ///< bounds on the layout file (a typo must not hang the build)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -39,6 +73,7 @@ struct LayoutConfig {
     v("blocks", s.blocks);
     v("origin_lat_deg", s.origin_lat_deg);
     v("origin_lon_deg", s.origin_lon_deg);
+    v("limits", s.limits);
   }
   void validate() const;
 };

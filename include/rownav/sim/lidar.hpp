@@ -50,6 +50,9 @@ struct LidarConfig {
   double intensity_noise_std = 0.05;             ///< [-] relative gaussian noise on intensity
   Eigen::Vector3d mount_xyz{0.3, 0.0, 0.6};      ///< [m] T_base_lidar translation
   Eigen::Vector3d mount_rpy_deg{0.0, 0.0, 0.0};  ///< [deg] T_base_lidar roll, pitch, yaw
+  /// [m] largest |mount_xyz| component accepted. A LiDAR sits on the robot, within a few metres
+  /// of its base; a far-off mount is a typo, and rays cast from ~1e19 m make Embree abort.
+  double max_mount_offset = 100.0;
   /// Pose interpolated per column (rolling shutter); false: every column uses the pose at
   /// the sweep stamp.
   bool motion_during_sweep = true;
@@ -72,6 +75,7 @@ struct LidarConfig {
     v("intensity_noise_std", s.intensity_noise_std);
     v("mount_xyz", s.mount_xyz);
     v("mount_rpy_deg", s.mount_rpy_deg);
+    v("max_mount_offset", s.max_mount_offset);
     v("motion_during_sweep", s.motion_during_sweep);
   }
   /// Throws std::invalid_argument naming the offending field.

@@ -37,12 +37,13 @@ class RayCaster {
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
 
-  /// First hit of the ray origin + t * unit_dir with t in [t_min, t_max] ([m]).
+  /// First hit of the ray origin + t * unit_dir with t in [t_min, t_max] ([m]). A non-finite
+  /// ray, or one with a coordinate beyond 1e18 (Embree's limit), misses.
   RayHit cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& unit_dir, float t_min,
               float t_max) const;
 
   /// Casts n rays (origins[i], unit_dirs[i]) into out[i], in packets of 16 (rtcIntersect16,
-  /// coherent context: rays of a LiDAR column share their origin). Non-finite rays miss.
+  /// coherent context: rays of a LiDAR column share their origin). Rays `cast` rejects miss.
   void cast_batch(const Eigen::Vector3f* origins, const Eigen::Vector3f* unit_dirs, std::size_t n,
                   float t_min, float t_max, RayHit* out) const;
 
