@@ -1,7 +1,7 @@
 // The node's settings and the stack's files.
 #include "rownav_ros/node_config.hpp"
 
-#include "rownav/io/closed_loop_runner.hpp"
+#include "rownav/io/nav_stack_setup.hpp"
 
 #include <algorithm>
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "rownav/io/detector_registry.hpp"
-#include "rownav/io/localize_setup.hpp"
+#include "rownav/io/nav_stack_setup.hpp"
 #include "rownav/sim/field_truth.hpp"
 
 namespace rownav::io {
@@ -150,23 +150,6 @@ core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& 
   const Eigen::Vector2d e = (c0[c0.size() - 2] - c0.back()).normalized();
   const Eigen::Vector2d p = c0.back() - lead_in * e;
   return {p.x(), p.y(), std::atan2(e.y(), e.x())};
-}
-
-void nav_stack_robot(navigate::NavStackConfig& nav, const sim::RobotConfig& robot,
-                     const sim::SimConfig& sensors) {
-  nav.robot.width = robot.width;
-  nav.robot.base_to_front = robot.base_to_front;
-  nav.robot.turn = {robot.can_turn_in_place(), robot.min_turn_radius()};
-  // The robot's limits are applied to every command, as a base controller would (the
-  // controllers and manoeuvres do not clamp themselves).
-  nav.limits.max_speed = robot.max_speed;
-  nav.limits.max_reverse_speed = robot.max_reverse_speed;
-  nav.limits.max_yaw_rate = robot.max_yaw_rate;
-  nav.limits.max_accel = robot.max_accel;
-  nav.limits.max_yaw_accel = robot.max_yaw_accel;
-  nav.limits.min_turn_radius = robot.min_turn_radius();
-  nav.localizer = localizer_config_for(robot, sensors);
-  nav.stack.sweep_period = 1.0 / sensors.lidar.rate_hz;
 }
 
 RunResult run_closed_loop(const ClosedLoopSetup& setup) {

@@ -92,12 +92,6 @@ struct RunResult {
 core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& order, int block,
                           navigate::TurnSide first_turn, double lead_in);
 
-/// NavStackConfig::robot, limits and localizer of a simulated robot: its footprint, limits and
-/// the NOMINAL kinematics its firmware assumes (io::localizer_config_for); the stack's sweep
-/// period from the LiDAR rate.
-void nav_stack_robot(navigate::NavStackConfig& nav, const sim::RobotConfig& robot,
-                     const sim::SimConfig& sensors);
-
 /// Runs the mission. Throws std::invalid_argument / InputError for a bad set-up (before
 /// simulating); the run itself never throws.
 RunResult run_closed_loop(const ClosedLoopSetup& setup);
