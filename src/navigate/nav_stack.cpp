@@ -175,6 +175,13 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   in.tracking = *report.tracking;
   in.end_of_row = report.end_of_row;
   in.points_base = parts_.pipeline->last_points();
+  // A 3D sweep: obstacles by height above the ground, not every point of the detection band.
+  const auto& cloud = parts_.pipeline->last_cloud_base();
+  std::vector<Eigen::Vector2f> tall;
+  if (!cloud.points.empty()) {
+    tall = obstacle_points(cloud, parts_.pipeline->last_ground(), config_.stack.obstacles);
+    in.obstacle_points_base = std::span<const Eigen::Vector2f>(tall);
+  }
   in.robot = config_.robot;
   NavOutput out = navigator_->step(in);
   if (out.control) {
@@ -182,7 +189,8 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
     // The controllers integrate over the time since the previous frame (Malavazi 2018 2.3.5).
     const double dt = last_frame_stamp_ ? report.stamp - *last_frame_stamp_ : sweep_period_;
     c.dt = std::clamp(dt, 1e-3, config_.stack.max_frame_dt);
-    c.obstacle_distance = control::front_obstacle_distance(in.points_base, config_.stack.front);
+    c.obstacle_distance = control::front_obstacle_distance(
+        in.obstacle_points_base.value_or(in.points_base), config_.stack.front);
     out.cmd = parts_.controller->compute(c);
     if (!std::isfinite(out.cmd.v) || !std::isfinite(out.cmd.omega)) out.cmd = {};
   }

@@ -138,7 +138,7 @@ bool Navigator::obstacle_ahead(const NavInput& in) const {
   const double x0 = in.robot.base_to_front, x1 = x0 + config_.stop_distance;
   const double half = in.robot.width / 2.0;
   int n = 0;
-  for (const auto& p : in.points_base)
+  for (const auto& p : in.obstacle_points_base.value_or(in.points_base))
     if (std::isfinite(p.x()) && std::isfinite(p.y()) && p.x() > x0 && p.x() < x1 &&
         std::abs(p.y()) < half)
       ++n;

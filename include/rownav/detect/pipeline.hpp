@@ -46,6 +46,8 @@ class DetectionPipeline {
   /// The last 3D frame in the base frame before preprocessing (raw heights, NaN possible); empty
   /// after a planar scan. End-of-row tests count points in height bands of it.
   const core::PointCloud& last_cloud_base() const { return cloud_base_; }
+  /// The ground estimated on last_cloud_base() (heights above the local ground).
+  const preprocess::GroundEstimator& last_ground() const { return preprocessor_.ground(); }
 
  private:
   core::RowObservation detect(double stamp);

@@ -19,6 +19,7 @@
 #include "rownav/localize/localizer.hpp"
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/navigator.hpp"
+#include "rownav/navigate/obstacle_points.hpp"
 
 namespace rownav::navigate {
 
@@ -102,6 +103,7 @@ struct StackConfig {
   /// weed blade stalled the demo at zero speed with 1 point and a 0.1 m margin).
   control::FrontRectConfig front = {.margin = 0.0, .min_points = 3};
   WatchdogConfig watchdog;  ///< stale inputs and state budgets
+  ObstacleBandConfig obstacles;  ///< which 3D points are obstacles (stop, slow-down)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -118,6 +120,7 @@ struct StackConfig {
     v("max_frame_dt", s.max_frame_dt);
     v("front", s.front);
     v("watchdog", s.watchdog);
+    v("obstacles", s.obstacles);
   }
   void validate() const {
     core::check_positive(sweep_period, "sweep_period");
@@ -129,6 +132,7 @@ struct StackConfig {
     core::check_positive(max_frame_dt, "max_frame_dt");
     core::validate_nested(front, "front");
     core::validate_nested(watchdog, "watchdog");
+    core::validate_nested(obstacles, "obstacles");
   }
 };
 

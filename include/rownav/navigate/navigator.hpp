@@ -133,6 +133,9 @@ struct NavInput {
   track::RowTracking tracking;                   ///< tracker output
   EndOfRowResult end_of_row;                     ///< end-of-row detector output
   std::span<const Eigen::Vector2f> points_base;  ///< 2D points, base frame (row ends, obstacles)
+  /// Obstacle candidates by height (3D sweeps, navigate/obstacle_points.hpp); when set, the
+  /// obstacle stop counts these instead of points_base
+  std::optional<std::span<const Eigen::Vector2f>> obstacle_points_base;
   RobotLimits robot;
 };
 

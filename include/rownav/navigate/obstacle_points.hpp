@@ -1,0 +1,47 @@
+#pragma once
+/// @file obstacle_points.hpp The points that can be obstacles: of a 3D sweep, those ahead of the
+/// robot whose height above the local ground lies in a band. Low weeds and grass between crop
+/// rows are not obstacles (issue 10: in maize the weeds in the 2D detection band stopped the
+/// robot); a person, a box or a post is. 2D scans have no heights: their points are used as they
+/// are (a scanner mounted low sees what it would hit).
+#include <Eigen/Core>
+#include <vector>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/point_cloud.hpp"
+#include "rownav/preprocess/ground.hpp"
+
+namespace rownav::navigate {
+
+/// Which 3D points count for the obstacle stop and the controllers' slow-down.
+struct ObstacleBandConfig {
+  /// [m] above the local ground; lower points are ground cover (weeds 'some' in rownav's fields
+  /// reach 0.25 m; a person's legs, a box, a post are all taller)
+  double min_height = 0.3;
+  double max_height = 2.5;  ///< [m] higher points pass over the robot (branches, wires)
+  double range = 6.0;       ///< [m] ahead of the base origin (covers the slow-down rectangle)
+  double half_width = 1.0;  ///< [m] either side of the robot's centre line
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("min_height", s.min_height);
+    v("max_height", s.max_height);
+    v("range", s.range);
+    v("half_width", s.half_width);
+  }
+  void validate() const {
+    core::check_non_negative(min_height, "min_height");
+    core::check(max_height > min_height, "max_height", "must be > min_height");
+    core::check_positive(range, "range");
+    core::check_positive(half_width, "half_width");
+  }
+};
+
+/// (x, y) of the points of `cloud_base` (base frame) in front of the robot (0 < x < range,
+/// |y| < half_width) whose height above `ground` is within the band; non-finite points are
+/// skipped. Never throws.
+std::vector<Eigen::Vector2f> obstacle_points(const core::PointCloud& cloud_base,
+                                             const preprocess::GroundEstimator& ground,
+                                             const ObstacleBandConfig& band);
+
+}  // namespace rownav::navigate
