@@ -1,6 +1,7 @@
 // rownav_node's ROS side.
 #include "rownav_ros/ros_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
@@ -52,9 +53,53 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   // Always: the IMU levels each sweep by gravity; its yaw rate is used only with ~use_imu.
   imu_sub_ = nh_.subscribe("imu", 200, &RosNode::on_imu, this);
   enable_sub_ = pnh_.subscribe("enable", 1, &RosNode::on_enable, this);
+  diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
+  watchdog_timer_ = nh_.createTimer(ros::Duration(1.0 / c.watchdog_rate), &RosNode::on_timer, this);
   ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s",
            c.input.c_str(), c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
            core_->setup().order.size(), enabled_ ? "driving" : "observing only");
+}
+
+RosNode::~RosNode() {
+  if (ros::ok()) publish_stop();
+}
+
+void RosNode::on_timer(const ros::TimerEvent&) {
+  const TickResult t = core_->tick(ros::Time::now().toSec());
+  publish_cmd(t.cmd);
+  for (const auto& e : t.events) ROS_WARN("rownav_node: %s", e.text.c_str());
+  if (ticks_++ % static_cast<int>(std::max(1.0, core_->setup().node.watchdog_rate)) == 0)
+    publish_diagnostics(t);
+}
+
+void RosNode::publish_diagnostics(const TickResult& t) {
+  diagnostic_msgs::DiagnosticArray a;
+  a.header.stamp = ros::Time::now();
+  diagnostic_msgs::DiagnosticStatus s;
+  s.name = "rownav_node: inputs and mission";
+  s.hardware_id = core_->setup().node.base_frame;
+  const bool stopped = t.state == navigate::NavState::safe_stop;
+  s.level = stopped ? diagnostic_msgs::DiagnosticStatus::ERROR
+            : t.health != navigate::InputHealth::ok ? diagnostic_msgs::DiagnosticStatus::WARN
+                                                    : diagnostic_msgs::DiagnosticStatus::OK;
+  s.message = stopped ? "safe stop: " + std::string(core::enum_name(t.stop_reason))
+              : t.health == navigate::InputHealth::lidar_stale    ? "LiDAR stale: command zero"
+              : t.health == navigate::InputHealth::odometry_stale ? "odometry stale: command zero"
+                                                                  : "ok";
+  auto kv = [&](const std::string& k, const std::string& v) {
+    diagnostic_msgs::KeyValue p;
+    p.key = k, p.value = v;
+    s.values.push_back(p);
+  };
+  kv("lidar_age_s", std::to_string(t.lidar_age));
+  kv("odometry_age_s", std::to_string(t.odometry_age));
+  kv("state", std::string(core::enum_name(t.state)));
+  const auto& st = core_->stack().stats();
+  kv("frames", std::to_string(st.frames));
+  kv("dropped_frames", std::to_string(st.dropped_frames));
+  kv("dropped_odometry", std::to_string(st.dropped_odometry));
+  a.status.push_back(s);
+  diag_pub_.publish(a);
 }
 
 bool RosNode::ensure_mount(const std::string& frame, const ros::Time& stamp) {

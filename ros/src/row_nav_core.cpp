@@ -114,6 +114,24 @@ std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
   }
 }
 
+TickResult RowNavCore::tick(double stamp) {
+  TickResult r;
+  if (!started_) {  // nothing processed yet: stand still
+    r.state = stack_->navigator().state();
+    r.health = navigate::InputHealth::lidar_stale;
+    return r;
+  }
+  navigate::NavCommand c = stack_->command(stamp);
+  r.cmd = c.cmd;
+  r.health = c.health;
+  r.lidar_age = c.lidar_age;
+  r.odometry_age = c.odometry_age;
+  r.state = c.state;
+  r.stop_reason = c.stop_reason;
+  r.events = std::move(c.events);
+  return r;
+}
+
 FrameResult RowNavCore::frame(double stamp) {
   if (!last_odom_stamp_) {
     stack_->command(stamp);  // the frame is consumed (detected), the command stays zero

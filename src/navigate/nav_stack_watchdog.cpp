@@ -52,7 +52,10 @@ void NavStack::watch_inputs(NavCommand& c, NavOutput& out, double stamp) {
   if (!(c.odometry_age <= w.odometry_timeout)) h = InputHealth::odometry_stale;
   c.health = h;
   if (h != InputHealth::ok) out.cmd = {};  // never move on old data
-  if (h == health_) return;
+  if (h == health_) {
+    inputs_seen_ |= h == InputHealth::ok;
+    return;
+  }
   // Events on transitions only, once inputs have been fresh (not while starting up).
   if (h != InputHealth::ok && inputs_seen_)
     out.events.push_back({stamp, NavEventKind::input_stale, out.corridor, Eigen::Vector2d::Zero(),

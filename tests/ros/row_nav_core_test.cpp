@@ -160,3 +160,21 @@ TEST(OdomBuffer, InterpolatesAndExtrapolates) {
   b.push({4.0, Pose2(2, 0, 0), {}});
   EXPECT_FALSE(b.at(1.5));  // trimmed (history 1 s)
 }
+
+TEST(RowNavCore, TheWatchdogTickStopsTheRobotWhenMessagesStop) {
+  const Scene scene(0.0, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  EXPECT_EQ(core.tick(50.0).cmd.v, 0.0);  // before any frame: stand still
+  const rb::FrameResult r = drive(scene, core, 8);  // frames and odometry up to t = 100.75
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_GT(r.cmd.v, 0.0);
+  const rb::TickResult fresh = core.tick(100.76);
+  EXPECT_EQ(fresh.health, rownav::navigate::InputHealth::ok);
+  const rb::TickResult stale = core.tick(101.5);  // no message for 0.75 s
+  EXPECT_NE(stale.health, rownav::navigate::InputHealth::ok);
+  EXPECT_EQ(stale.cmd.v, 0.0);
+  EXPECT_EQ(stale.cmd.omega, 0.0);
+  bool said = false;
+  for (const auto& e : stale.events) said |= e.kind == rownav::navigate::NavEventKind::input_stale;
+  EXPECT_TRUE(said);
+}

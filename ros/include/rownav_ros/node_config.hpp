@@ -37,6 +37,9 @@ struct NodeConfig {
   double odom_history = 2.0;       ///< [s] odometry poses kept for frame-stamp interpolation
   double max_extrapolation = 0.2;  ///< [s] a frame may be this much newer than the odometry
   double nominal_frame_period = 0.1;  ///< [s] dt of the first command (acceleration limit)
+  /// [Hz] the watchdog timer: cmd_vel is re-evaluated (zero on stale inputs) at this rate even
+  /// when no message arrives; diagnostics are published once a second
+  double watchdog_rate = 20.0;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -59,6 +62,7 @@ struct NodeConfig {
     v("odom_history", s.odom_history);
     v("max_extrapolation", s.max_extrapolation);
     v("nominal_frame_period", s.nominal_frame_period);
+    v("watchdog_rate", s.watchdog_rate);
   }
   void validate() const;
 };

@@ -1,6 +1,7 @@
 #pragma once
 /// @file ros_node.hpp rownav_node's ROS side: parameters, subscriptions, tf2, publications.
 /// The processing is RowNavCore's.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/Vector3Stamped.h>
@@ -20,11 +21,16 @@ namespace rownav::ros_bridge {
 /// The node. Topics (relative, remappable): subscribes `cloud` or `scan`, `odom`, `imu`
 /// (~use_imu), `~enable` (std_msgs/Bool); publishes `cmd_vel` (unless observing only),
 /// `~tracking` (Vector3Stamped: lateral [m], heading [rad], spacing [m]), `~state`
-/// (std_msgs/String) and `~rows` (PoseArray of the tracked rows, base frame). docs/ros.md.
+/// (std_msgs/String), `~rows` (PoseArray of the tracked rows, base frame) and `/diagnostics`
+/// (input ages, health, state; once a second). A timer re-evaluates cmd_vel at
+/// ~watchdog_rate so that stale inputs stop the robot even when no message arrives; zero is
+/// published on shutdown. docs/ros.md.
 class RosNode {
  public:
   /// Reads the parameters and loads the stack; throws on a bad parameter or file.
   RosNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Publishes a zero command (the last one sent must not keep the robot moving).
+  ~RosNode();
 
  private:
   void on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
@@ -32,6 +38,8 @@ class RosNode {
   void on_odom(const nav_msgs::Odometry::ConstPtr& msg);
   void on_imu(const sensor_msgs::Imu::ConstPtr& msg);
   void on_enable(const std_msgs::Bool::ConstPtr& msg);
+  void on_timer(const ros::TimerEvent& event);
+  void publish_diagnostics(const TickResult& t);
   /// Looks T_base_lidar up once (base_frame <- frame); false while tf2 does not know it.
   bool ensure_mount(const std::string& frame, const ros::Time& stamp);
   void publish_frame(const FrameResult& r, const ros::Time& stamp);
@@ -45,7 +53,9 @@ class RosNode {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   ros::Subscriber frame_sub_, odom_sub_, imu_sub_, enable_sub_;
-  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_;
+  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_, diag_pub_;
+  ros::Timer watchdog_timer_;
+  int ticks_ = 0;
 };
 
 }  // namespace rownav::ros_bridge

@@ -28,6 +28,16 @@ struct FrameResult {
   int corridor = -1;  ///< corridor of the plan being served
 };
 
+/// The watchdog tick's answer (a timer, between messages).
+struct TickResult {
+  core::Twist2 cmd;  ///< zero while inputs are stale, before the first frame, or stopped
+  navigate::InputHealth health = navigate::InputHealth::ok;
+  double lidar_age = 0.0, odometry_age = 0.0;  ///< [s]
+  navigate::NavState state = navigate::NavState::in_row;
+  navigate::StopReason stop_reason = navigate::StopReason::none;
+  std::vector<navigate::NavEvent> events;
+};
+
 /// Per-frame processing of rownav_node. Not thread-safe (call from one callback queue).
 /// Frame and odometry handlers never throw.
 class RowNavCore {
@@ -51,6 +61,9 @@ class RowNavCore {
   /// Stores the pose; once frames are processed, returns the navigator's command between frames
   /// (odometry-closed turns and line following), limited. nullopt: nothing to send.
   std::optional<core::Twist2> on_odom(const nav_msgs::Odometry& msg);
+  /// The command at `stamp` from a timer: the stack's watchdog zeroes it when the LiDAR or the
+  /// odometry stopped coming (no message: no other call would). Never throws.
+  TickResult tick(double stamp);
   /// IMU: gravity levelling of sweeps, gyro yaw rate (NodeConfig::use_imu).
   void on_imu(const sensor_msgs::Imu& msg);
 
