@@ -3,10 +3,15 @@
 
 #include <chrono>
 #include <cmath>
+#include <array>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 
+#include "rownav/io/csv.hpp"
 #include "rownav/io/detector_registry.hpp"
+#include "rownav/io/recording.hpp"
+#include "rownav/io/recording_replay.hpp"
 #include "rownav/io/nav_stack_setup.hpp"
 #include "rownav/sim/field_truth.hpp"
 
@@ -29,24 +34,57 @@ double polygon_distance(const std::array<Eigen::Vector2d, 4>& poly, const Eigen:
   return inside ? 0.0 : best;
 }
 
-/// Hands the simulator's samples to the stack and collects the metrics.
+/// The order of a run's inputs, for io::replay_input_log (ClosedLoopSetup::record_inputs).
+class InputLog {
+ public:
+  explicit InputLog(const std::filesystem::path& dir) : writer_(dir, YAML::Node()) {}
+  void cloud(const core::PointCloud& c) { writer_.write_cloud(c), row("cloud", n_[0]++); }
+  void scan(const core::Scan2D& s) { writer_.write_scan(s), row("scan", n_[1]++); }
+  void encoders(const core::WheelEncoderSample& s) { writer_.write_encoders(s), row("encoders", n_[2]++); }
+  void imu(const core::ImuSample& s) { writer_.write_imu(s), row("imu", n_[3]++); }
+  void gnss(const core::GnssFix& s) { writer_.write_gnss(s), row("gnss", n_[4]++); }
+  void command(const navigate::NavCommand& c) {
+    log() << "command,0," << format_double(c.stamp) << ',' << format_double(c.cmd.v) << ','
+          << format_double(c.cmd.omega) << ',' << core::enum_name(c.state) << '\n';
+  }
+  void commit() { writer_.commit(); }
+
+ private:
+  std::ostream& log() { return writer_.extra(kInputLog, "kind,index,stamp,v,omega,state"); }
+  void row(const char* kind, std::size_t i) { log() << kind << ',' << i << ",0,0,0,\n"; }
+  RecordingWriter writer_;
+  std::array<std::size_t, 5> n_{};
+};
+
+/// Hands the simulator's samples to the stack (and the input log) and collects the metrics.
 class RunnerSink : public sim::SimSink {
  public:
   RunnerSink(navigate::NavStack& stack, const sim::Simulator& sim, const sim::Field& field,
-             RunResult& result)
-      : stack_(stack), sim_(sim), result_(result) {
+             RunResult& result, InputLog* log)
+      : stack_(stack), sim_(sim), result_(result), log_(log) {
     for (const auto& p : field.plants)
       if (p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post) posts_.push_back(p);
   }
   void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>&) override {
+    if (log_) log_->cloud(c);
     stack_.on_cloud(c);
   }
   void on_scan(const core::Scan2D& s, const std::vector<sim::SurfaceClass>&) override {
+    if (log_) log_->scan(s);
     stack_.on_scan(s);
   }
-  void on_encoders(const core::WheelEncoderSample& s) override { stack_.on_encoders(s); }
-  void on_imu(const core::ImuSample& s) override { stack_.on_imu(s); }
-  void on_gnss(const core::GnssFix& s) override { stack_.on_gnss(s); }
+  void on_encoders(const core::WheelEncoderSample& s) override {
+    if (log_) log_->encoders(s);
+    stack_.on_encoders(s);
+  }
+  void on_imu(const core::ImuSample& s) override {
+    if (log_) log_->imu(s);
+    stack_.on_imu(s);
+  }
+  void on_gnss(const core::GnssFix& s) override {
+    if (log_) log_->gnss(s);
+    stack_.on_gnss(s);
+  }
   void on_ground_truth(const sim::GroundTruth& g) override {
     RunSample s;
     s.stamp = g.stamp;
@@ -72,6 +110,7 @@ class RunnerSink : public sim::SimSink {
   navigate::NavStack& stack_;
   const sim::Simulator& sim_;
   RunResult& result_;
+  InputLog* log_;
   std::vector<sim::Plant> posts_;
   navigate::NavState state = navigate::NavState::in_row;
   int planned = -1;
@@ -152,6 +191,19 @@ core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& 
   return {p.x(), p.y(), std::atan2(e.y(), e.x())};
 }
 
+std::unique_ptr<navigate::NavStack> make_nav_stack(const ClosedLoopSetup& setup,
+                                                   const std::vector<int>& order) {
+  navigate::NavStackConfig nav = setup.nav;
+  nav_stack_robot(nav, setup.robot, setup.sensors);
+  navigate::NavStackParts parts;
+  parts.pipeline = std::make_unique<detect::DetectionPipeline>(
+      make_pipeline(setup.detector, setup.detect_config, setup.sensors.lidar.T_base_lidar()));
+  parts.tracker = setup.make_tracker();
+  parts.controller = setup.make_controller();
+  return std::make_unique<navigate::NavStack>(nav, std::move(parts), order,
+                                              setup.mission.first_turn);
+}
+
 RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   core::check(setup.field != nullptr, "field", "missing");
   core::check(static_cast<bool>(setup.make_tracker), "tracker", "no tracker factory");
@@ -162,17 +214,13 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   const core::Pose2 start = mission_start(truth, result.order, setup.mission.block,
                                           setup.mission.first_turn, setup.lead_in);
   result.T_world_odom = start;
-  navigate::NavStackConfig nav = setup.nav;
-  nav_stack_robot(nav, setup.robot, setup.sensors);
-  navigate::NavStackParts parts;
-  parts.pipeline = std::make_unique<detect::DetectionPipeline>(
-      make_pipeline(setup.detector, setup.detect_config, setup.sensors.lidar.T_base_lidar()));
-  parts.tracker = setup.make_tracker();
-  parts.controller = setup.make_controller();
-  navigate::NavStack stack(nav, std::move(parts), result.order, setup.mission.first_turn);
+  const auto stack_ptr = make_nav_stack(setup, result.order);
+  navigate::NavStack& stack = *stack_ptr;
 
   sim::Simulator sim(*setup.field, setup.robot, setup.sensors, start);
-  RunnerSink sink(stack, sim, *setup.field, result);
+  std::optional<InputLog> log;
+  if (!setup.record_inputs.empty()) log.emplace(setup.record_inputs);
+  RunnerSink sink(stack, sim, *setup.field, result, log ? &*log : nullptr);
   const auto wall0 = Clock::now();
   core::Twist2 cmd;
   double next_progress = 0.0;
@@ -184,6 +232,7 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
     sim.step(cmd, sink);
     const bool was_in_row = stack.navigator().state() == navigate::NavState::in_row;
     navigate::NavCommand out = stack.command(sim.time());
+    if (log) log->command(out);
     cmd = out.cmd;
     if (out.frame && out.frame->tracking) {
       FrameSample f = score_frame(*out.frame->tracking, sim.ground_truth(),
@@ -204,6 +253,7 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
       setup.progress(sim.time(), static_cast<double>(out.served) / result.order.size());
     }
   }
+  if (log) log->commit();
   result.final_state = stack.navigator().state();
   result.turns = stack.navigator().turns();
   result.sim_time = sim.time();

@@ -6,7 +6,12 @@
 #include <limits>
 #include <vector>
 
+#include "rownav/io/csv.hpp"
+#include "rownav/io/input_error.hpp"
+
 namespace rownav::io {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -81,6 +86,55 @@ void replay_recording(const Recording& rec, navigate::NavStack& stack, const Rep
     const navigate::NavCommand c = stack.command(arrival);
     if (c.frame) on_frame(c);
   }
+}
+
+namespace {
+
+template <class V>
+const auto& at(const V& v, std::int64_t i, const CsvReader& r, const fs::path& file) {
+  if (i < 0 || static_cast<std::size_t>(i) >= v.size())
+    throw InputError(file.string(), std::to_string(r.line()),
+                     "index " + std::to_string(i) + " outside its stream");
+  return v[static_cast<std::size_t>(i)];
+}
+
+}  // namespace
+
+std::vector<ReplayedCommand> replay_input_log(const Recording& rec, navigate::NavStack& stack) {
+  const fs::path file = rec.dir / kInputLog;
+  CsvReader r(file);
+  std::vector<ReplayedCommand> out;
+  r.next();  // header
+  while (r.next()) {
+    r.expect_size(6);
+    const std::string_view kind = r.cell(0);
+    const std::int64_t i = r.integer(1, "index");
+    if (kind == "encoders") {
+      stack.on_encoders(at(rec.encoders, i, r, file));
+    } else if (kind == "imu") {
+      stack.on_imu(at(rec.imu, i, r, file));
+    } else if (kind == "gnss") {
+      stack.on_gnss(at(rec.gnss, i, r, file));
+    } else if (kind == "scan") {
+      stack.on_scan(at(rec.scans, i, r, file));
+    } else if (kind == "cloud") {
+      at(rec.cloud_stamps, i, r, file);
+      stack.on_cloud(rec.cloud(static_cast<std::size_t>(i)));
+    } else if (kind == "command") {
+      ReplayedCommand c;
+      c.stamp = r.number(2, "stamp");
+      c.live = {r.number(3, "v"), 0.0, r.number(4, "omega")};
+      c.live_state = std::string(r.cell(5));
+      const navigate::NavCommand n = stack.command(c.stamp);
+      c.replayed = n.cmd;
+      c.replayed_state = std::string(core::enum_name(n.state));
+      out.push_back(std::move(c));
+    } else {
+      throw InputError(file.string(), std::to_string(r.line()),
+                       "unknown input kind '" + std::string(kind) + "'");
+    }
+  }
+  return out;
 }
 
 }  // namespace rownav::io

@@ -39,6 +39,10 @@ struct ClosedLoopSetup {
   TrackerFactory make_tracker;
   ControllerFactory make_controller;
   double time_limit = 1200.0;     ///< [s] simulated; the run stops with reason `timeout`
+  /// When set, every input handed to NavStack is also written, in order, to this new recording
+  /// directory (samples + inputs.csv with each command the stack answered): its replay through
+  /// io::replay_input_log must give the same commands.
+  std::filesystem::path record_inputs;
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
 };
@@ -91,6 +95,11 @@ struct RunResult {
 /// order lies on `first_turn`'s side. Throws std::invalid_argument for a missing corridor.
 core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& order, int block,
                           navigate::TurnSide first_turn, double lead_in);
+
+/// The stack a run drives with: `setup`'s navigation config, the robot's footprint, limits and
+/// odometry model (nav_stack_robot), its detector, tracker and controller.
+std::unique_ptr<navigate::NavStack> make_nav_stack(const ClosedLoopSetup& setup,
+                                                   const std::vector<int>& order);
 
 /// Runs the mission. Throws std::invalid_argument / InputError for a bad set-up (before
 /// simulating); the run itself never throws.

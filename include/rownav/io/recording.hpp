@@ -52,6 +52,9 @@ class RecordingWriter {
   void write_imu(const core::ImuSample& s);
   void write_gnss(const core::GnssFix& s);
   void write_ground_truth(const sim::GroundTruth& gt);
+  /// An extra CSV file of the recording (e.g. `inputs.csv`, the order of a live run's inputs);
+  /// `header` is written when the file is first opened.
+  std::ostream& extra(const std::string& rel, const char* header) { return stream(rel, header); }
   /// Rows and plants (not the mesh). At most once.
   void write_field(const sim::Field& field);
 

@@ -25,4 +25,21 @@ double sweep_period(const Recording& rec, double fallback);
 void replay_recording(const Recording& rec, navigate::NavStack& stack, const ReplayOptions& options,
                       const std::function<void(const navigate::NavCommand&)>& on_frame);
 
+/// A live run's inputs in the order NavStack received them (`inputs.csv` of a recording made
+/// with ClosedLoopSetup::record_inputs): `kind,index,stamp,v,omega,state` per call, kind one of
+/// encoders, imu, gnss, cloud, scan (index into the recording's stream) or command (the stamp
+/// and the command the live stack answered).
+inline constexpr const char* kInputLog = "inputs.csv";
+
+/// One command of a log replay: what the live run answered and what the replay answers.
+struct ReplayedCommand {
+  double stamp = 0.0;
+  core::Twist2 live, replayed;
+  std::string live_state, replayed_state;
+};
+
+/// Replays `rec`'s input log into `stack` call by call. InputError on a malformed log or an
+/// index outside its stream.
+std::vector<ReplayedCommand> replay_input_log(const Recording& rec, navigate::NavStack& stack);
+
 }  // namespace rownav::io
