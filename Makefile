@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps configure build build-demo demo test bench bench-suite format clean
+.PHONY: deps configure build build-demo demo test test-asan bench bench-suite format clean
 
 deps:
 	scripts/install-deps
@@ -29,6 +29,14 @@ test: build
 	rm -rf $(BUILD)/bench-quick
 	$(BUILD)/rownav bench --quick --out $(BUILD)/bench-quick --jobs $(JOBS)
 
+## test-asan: every CTest test under AddressSanitizer + UBSan (own build tree: build-asan/)
+test-asan: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DROWNAV_BUILD_BENCH=OFF \
+	  -DROWNAV_SANITIZE=address,undefined >/dev/null
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) --timeout 1800
+
 ## bench: run the micro-benchmarks (figures are recorded in BENCHMARK.md)
 bench: build
 	@for b in $(BUILD)/*_bench; do echo "== $$b"; $$b --benchmark_min_time=0.5; done
@@ -41,4 +49,4 @@ format:
 	clang-format -i $$(git ls-files '*.hpp' '*.cpp')
 
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) build-asan out
