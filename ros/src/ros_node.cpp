@@ -55,6 +55,10 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   enable_sub_ = pnh_.subscribe("enable", 1, &RosNode::on_enable, this);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
   watchdog_timer_ = nh_.createTimer(ros::Duration(1.0 / c.watchdog_rate), &RosNode::on_timer, this);
+  // The state from the start (latched), not only after a first frame.
+  std_msgs::String initial;
+  initial.data = last_state_ = std::string(core::enum_name(core_->navigator().state()));
+  state_pub_.publish(initial);
   ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s",
            c.input.c_str(), c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
            core_->setup().order.size(), enabled_ ? "driving" : "observing only");

@@ -1,5 +1,6 @@
 // ROS messages <-> rownav core types, on messages built by hand.
 #include "rownav_ros/conversions.hpp"
+#include "rownav_ros/ros_params.hpp"
 
 #include <gtest/gtest.h>
 #include <sensor_msgs/PointField.h>
@@ -192,4 +193,15 @@ TEST(RosConversions, ImuOdometryTwist) {
   EXPECT_DOUBLE_EQ(t.linear.x, 0.5);
   EXPECT_DOUBLE_EQ(t.angular.z, 0.2);
   EXPECT_DOUBLE_EQ(rb::yaw_of(geometry_msgs::Quaternion()), 0.0);  // zero quaternion
+}
+
+TEST(RosParams, AListGivenAsTextOnTheCommandLineIsAList) {
+  using rownav::ros_bridge::detail::numbers_from_text;
+  // `rosrun rownav rownav_node _lidar_mount:="[0.3,0,0.8,0,0,0]"` stores the text.
+  const auto v = numbers_from_text("[0.3,0,0.8,0,0,0]");
+  ASSERT_TRUE(v.has_value());
+  EXPECT_EQ(*v, (std::vector<double>{0.3, 0, 0.8, 0, 0, 0}));
+  EXPECT_EQ(*numbers_from_text("1.5, -2e-1"), (std::vector<double>{1.5, -0.2}));
+  EXPECT_FALSE(numbers_from_text("[0.3, x, 1]").has_value());
+  EXPECT_FALSE(numbers_from_text("0.3m").has_value());
 }

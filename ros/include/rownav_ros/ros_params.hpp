@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -31,6 +33,36 @@ struct IsConfigVector<std::vector<T, A>> : std::bool_constant<core::HasFields<T>
   throw std::invalid_argument("parameter " + key + ": " + reason);
 }
 
+/// A list of numbers given as a string, as `rosrun ... _key:="[0.3, 0, 0.8]"` stores it:
+/// "[a, b, c]" or "a, b, c"; nullopt when the text is not such a list.
+inline std::optional<std::vector<double>> numbers_from_text(std::string s) {
+  for (char& c : s)
+    if (c == '[' || c == ']' || c == ',') c = ' ';
+  std::istringstream in(s);
+  std::vector<double> v;
+  std::string item;
+  while (in >> item) {
+    std::size_t used = 0;
+    try {
+      v.push_back(std::stod(item, &used));
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    if (used != item.size()) return std::nullopt;
+  }
+  return v;
+}
+
+/// A list of numbers (a YAML list, or a string holding one).
+inline bool get_numbers(const ros::NodeHandle& nh, const std::string& key, std::vector<double>& v) {
+  if (nh.getParam(key, v)) return true;
+  std::string s;
+  if (!nh.getParam(key, s)) return false;
+  const auto parsed = numbers_from_text(s);
+  if (parsed) v = *parsed;
+  return parsed.has_value();
+}
+
 /// One parameter into `out`; absent: unchanged.
 template <class T>
 void read_param(const ros::NodeHandle& nh, const std::string& key, T& out);
@@ -51,13 +83,16 @@ void read_param(const ros::NodeHandle& nh, const std::string& key, T& out) {
     if (nh.hasParam(key)) param_fail(key, "lists of sections are read from the YAML file only");
   } else if constexpr (std::is_same_v<T, std::vector<float>>) {
     std::vector<double> v;
-    if (nh.getParam(key, v)) out.assign(v.begin(), v.end());
+    if (get_numbers(nh, key, v)) out.assign(v.begin(), v.end());
     else if (nh.hasParam(key)) param_fail(key, "expected a list of numbers");
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    if (!get_numbers(nh, key, out) && nh.hasParam(key))
+      param_fail(key, "expected a list of numbers, e.g. [0.3, 0, 0.8, 0, 0, 0]");
   } else if constexpr (IsVector<T>::value) {
     if (!nh.getParam(key, out) && nh.hasParam(key)) param_fail(key, "expected a list");
   } else if constexpr (requires { T::SizeAtCompileTime; }) {  // Eigen fixed-size vector
     std::vector<double> v;
-    if (!nh.getParam(key, v)) {
+    if (!get_numbers(nh, key, v)) {
       if (nh.hasParam(key)) param_fail(key, "expected a list of numbers");
       return;
     }
