@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_vineyard.hpp"
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/io/tracker_registry.hpp"
@@ -37,22 +38,9 @@ struct Sweep {
 const Sweep& sweep(const std::string& preset) {
   static std::map<std::string, Sweep> cache;
   if (auto it = cache.find(preset); it != cache.end()) return it->second;
-  sim::FieldConfig f;
-  f.vineyard.rows = 20;
-  f.vineyard.row_length = 100.0;
-  f.vineyard.stage = sim::GrowthStage::high;
-  const sim::Field field = sim::generate_field(f);
-  const sim::RayCaster caster(field.mesh);
-  const auto& centre = sim::FieldTruth(field).corridor_centre(0, 9);
-  const Eigen::Vector2d a = centre[centre.size() / 2], b = centre[centre.size() / 2 + 1];
-  const Eigen::Vector2d d = (b - a).normalized();
-  const sim::PoseAt pose = [&](double t) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(std::atan2(d.y(), d.x()), Eigen::Vector3d::UnitZ()).matrix();
-    T.translation() =
-        Eigen::Vector3d(a.x() + t * d.x(), a.y() + t * d.y(), field.terrain.height(a.x(), a.y()));
-    return T;
-  };
+  const auto& v = rownav::bench::bench_vineyard();
+  const sim::RayCaster& caster = *v.caster;
+  const sim::PoseAt& pose = v.pose;
   const auto lidar = sim::lidar_preset(preset);
   Sweep s{sim::Lidar(lidar, 1).sweep(caster, pose, 0.0), lidar.T_base_lidar()};
   return cache.emplace(preset, std::move(s)).first->second;

@@ -9,6 +9,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "bench_vineyard.hpp"
 #include "rownav/preprocess/preprocessor.hpp"
 #include "rownav/sim/field_config.hpp"
 #include "rownav/sim/field_truth.hpp"
@@ -28,22 +29,9 @@ struct Data {
 
 const Data& data() {
   static const Data d = [] {
-    sim::FieldConfig f;
-    f.vineyard.rows = 20;
-    f.vineyard.row_length = 100.0;
-    f.vineyard.stage = sim::GrowthStage::high;
-    const sim::Field field = sim::generate_field(f);
-    const sim::RayCaster caster(field.mesh);
-    const auto& centre = sim::FieldTruth(field).corridor_centre(0, 9);
-    const Eigen::Vector2d a = centre[centre.size() / 2], b = centre[centre.size() / 2 + 1];
-    const sim::PoseAt pose = [&](double t) {
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      const Eigen::Vector2d d = (b - a).normalized();
-      T.linear() = Eigen::AngleAxisd(std::atan2(d.y(), d.x()), Eigen::Vector3d::UnitZ()).matrix();
-      T.translation() = Eigen::Vector3d(a.x() + t * d.x(), a.y() + t * d.y(),
-                                        field.terrain.height(a.x(), a.y()));
-      return T;
-    };
+    const auto& v = rownav::bench::bench_vineyard();
+    const sim::RayCaster& caster = *v.caster;
+    const sim::PoseAt& pose = v.pose;
     Data out;
     const auto os1 = sim::lidar_preset("os1_64");
     out.frame = sim::Lidar(os1, 1).sweep(caster, pose, 0.0);
