@@ -16,7 +16,10 @@ Eigen::Isometry2d planar_mount(const Eigen::Isometry3d& T_base_lidar) {
 DetectionPipeline::DetectionPipeline(preprocess::PreprocessConfig config,
                                      std::unique_ptr<RowDetector> detector,
                                      const Eigen::Isometry3d& T_base_lidar)
-    : preprocessor_(config), detector_(std::move(detector)), T_base_lidar_(T_base_lidar) {
+    : preprocessor_(config),
+      detector_(std::move(detector)),
+      profile_(config.row_profile),
+      T_base_lidar_(T_base_lidar) {
   if (!detector_) throw std::invalid_argument("DetectionPipeline: no detector");
 }
 
@@ -86,7 +89,10 @@ core::RowObservation DetectionPipeline::detect(double stamp) {
   try {
     const DetectorInput input = preprocessor_.input(stamp);
     last_points_ = input.points;
-    return detector_->detect(input);
+    core::RowObservation obs = detector_->detect(input);
+    // Centre lines under the crowns, canopy half widths (issue 10); 2D input: no heights.
+    if (input.cloud != nullptr) profile_.apply(*input.cloud, obs);
+    return obs;
   } catch (...) {  // out of memory only: detectors do not throw; report an empty frame
     core::RowObservation none;
     none.stamp = stamp;

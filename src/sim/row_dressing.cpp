@@ -100,11 +100,14 @@ void place_vines(Field& field, const VineyardConfig& c, std::mt19937_64& rng) {
                               static_cast<int>(k), PlantKind::vine});
     }
     const auto posts = post_arcs(path.length(), c.post_spacing);
+    // Posts stand 0.15 m over a clumps canopy; a trimmed solid hedge hides them as far below its
+    // top (issue 10: no trellis shows on a real hedge mesh), only the end posts stand out.
+    const double post_top = c.canopy_shape == CanopyShape::solid_hedge ? -0.15 : 0.15;
     for (std::size_t j = 0; j < posts.size(); ++j) {
       const bool end = j == 0 || j + 1 == posts.size();
       field.plants.push_back({path.point(posts[j]),
                               0.5 * (end ? c.end_post_diameter : c.post_diameter),
-                              c.canopy_top + (end ? 0.2 : 0.15), static_cast<int>(k),
+                              c.canopy_top + (end ? 0.2 : post_top), static_cast<int>(k),
                               end ? PlantKind::end_post : PlantKind::post});
     }
   }

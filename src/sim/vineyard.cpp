@@ -109,10 +109,13 @@ void VineyardConfig::validate() const {
   core::check_range(curvature_amplitude, 0.0, 20.0, "curvature_amplitude");
   core::check_positive(curvature_wavelength, "curvature_wavelength");
   core::check_range(headland_width, 0.0, 100.0, "headland_width");
+  core::check_range(hedge_roundness, 1.0, 50.0, "hedge_roundness");
+  core::check_range(hedge_roughness, 0.0, 0.5, "hedge_roughness");
 }
 
 double add_vine(TriangleMesh& mesh, const Eigen::Vector3d& base, const Eigen::Vector2d& tangent,
                 const VineyardConfig& c, std::mt19937_64& rng) {
+  if (c.canopy_shape == CanopyShape::solid_hedge) return add_hedge_segment(mesh, base, tangent, c, rng);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const StageShape shape = stage_shape(c.stage);
   VineFrame v;

@@ -90,12 +90,13 @@ bool LineEkfTracker::initialise(const core::RowObservation& obs) {
 bool LineEkfTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
   stamp_ = obs.stamp;
   if (!initialised_) return initialise(obs);
-  // Association: per side the observed row nearest the predicted intercept, within a zone.
-  const double spacing = std::max(x_(1) - x_(2), 0.25 * common().default_row_spacing);
+  // Association: per side the observed row nearest the predicted intercept, within a zone
+  // scaled by the width between the two lines (not the row spacing: issue 10).
+  const double width = std::max(x_(1) - x_(2), 0.25 * common().default_row_spacing);
   std::vector<Measured> z;
   int pick[2] = {-1, -1};
   for (int s = 0; s < 2; ++s) {
-    double best = config_.association_zone * spacing;
+    double best = config_.association_zone * width;
     for (std::size_t i = 0; i < obs.rows.size(); ++i) {
       const auto& r = obs.rows[i];
       if (!finite_row(r)) continue;
@@ -156,8 +157,9 @@ void LineEkfTracker::describe(RowTracking& out) const {
   out.right = out.rows[0].offset < out.rows[1].offset ? 0 : -1;
   out.left = out.right == 0 ? 1 : -1;
   if (out.left < 0) out.rows.clear();  // crossed lines: no corridor
-  out.row_spacing =
-      out.left >= 0 ? spacing_between(out.rows[1].line_base, out.rows[0].line_base) : 0.0;
+  // b_l - b_r is the width between the fitted lines (face to face for an opaque canopy), not the
+  // row spacing: row_spacing stays 0 and TrackerBase gives the centre-to-centre one (issue 10).
+  out.row_spacing = 0.0;
 }
 
 }  // namespace rownav::track

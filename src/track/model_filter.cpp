@@ -158,7 +158,9 @@ void ModelFilterTracker::describe(RowTracking& out) const {
   if (out.left >= 0 && out.right >= 0 &&
       out.rows[std::size_t(out.left)].offset <= out.rows[std::size_t(out.right)].offset)
     out.left = -1;  // crossed models: follow the right one only
-  out.row_spacing = spacings_.empty() ? 0.0 : mean_spacing();
+  // spacings_ holds b_l - b_r, the width between the fitted lines (the consistency check of the
+  // candidates); the row spacing is centre to centre, from TrackerBase (issue 10).
+  out.row_spacing = 0.0;
 }
 
 void ModelFilterTracker::finish(RowTracking& out) {

@@ -106,7 +106,7 @@ ModelMatchingTracker::Centre ModelMatchingTracker::to_model(const core::RowLine&
   xa = (T_model_base_ * Eigen::Vector2d(r.x_min, r.line.y_at(r.x_min))).x();
   xb = (T_model_base_ * Eigen::Vector2d(r.x_max, r.line.y_at(r.x_max))).x();
   if (xa > xb) std::swap(xa, xb);
-  return {p.x(), p.y(), std::tan(core::wrap_angle(heading))};
+  return {p.x(), p.y(), std::tan(core::wrap_angle(heading)), r.centre_shift, r.half_width};
 }
 
 void ModelMatchingTracker::initialise(const core::RowObservation& obs) {
@@ -190,8 +190,15 @@ void ModelMatchingTracker::describe(RowTracking& out) const {
     t.support = static_cast<int>(m.buffer.size());
     t.age = stamp_ - m.created;
     t.last_seen = m.last_seen;
+    // Centre line: the fitted line moved by the buffer's median centre shift away from the
+    // robot (issue 10: the fit is the corridor-side face of an opaque canopy).
+    std::vector<double> sh, hw;
+    for (const auto& c : m.buffer) sh.push_back(c.shift), hw.push_back(c.half_width);
+    const double cosine = std::max(std::abs(t.line_base.direction.x()), 1e-3);
+    t.centre_offset = t.offset + (t.offset >= 0.0 ? 1.0 : -1.0) * median(sh) / cosine;
+    t.half_width = median(std::move(hw));
     out.rows.push_back(t);
-    if (m.initial || t.support >= config_.min_follow_support) offsets.push_back(t.offset);
+    if (m.initial || t.support >= config_.min_follow_support) offsets.push_back(t.centre_offset);
   }
   std::sort(out.rows.begin(), out.rows.end(),
             [](const TrackedRow& a, const TrackedRow& b) { return a.offset < b.offset; });
@@ -202,10 +209,9 @@ void ModelMatchingTracker::describe(RowTracking& out) const {
     if (out.rows[i].offset >= 0.0 && out.left < 0) out.left = static_cast<int>(i);
     if (out.rows[i].offset < 0.0) out.right = static_cast<int>(i);
   }
-  std::sort(offsets.begin(), offsets.end());
-  std::vector<double> d;
-  for (std::size_t i = 1; i < offsets.size(); ++i) d.push_back(offsets[i] - offsets[i - 1]);
-  out.row_spacing = d.empty() ? 0.0 : median(std::move(d));
+  // Nehme 2021 sec. 3.3's median of successive differences, over the centre lines of every
+  // followable model, a difference spanning a missing row counted as two (issue 10).
+  out.row_spacing = robust_spacing(std::move(offsets));
 }
 
 }  // namespace rownav::track

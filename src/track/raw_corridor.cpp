@@ -1,6 +1,9 @@
 #include "rownav/track/raw_corridor.hpp"
 
 #include <cmath>
+#include <vector>
+
+#include "rownav/track/row_geometry.hpp"
 
 namespace rownav::track {
 
@@ -18,13 +21,18 @@ RowTracking RawCorridorTracker::update(const core::RowObservation& obs, const co
   if (usable) {
     const auto& c = *obs.corridor;
     t.centre_line_base = core::Line2({0.0, c.offset}, {std::cos(c.heading), std::sin(c.heading)});
-    t.row_spacing = c.width;
-    if (c.width > 0.0) spacing_ = c.width;
+    // The corridor width is face to face for an opaque canopy: the spacing is centre to centre
+    // over every row seen (issue 10), the last one kept while a frame has fewer than two rows.
+    t.corridor_width = c.width;
+    std::vector<double> centres;
     for (std::size_t i = 0; i < obs.rows.size(); ++i) {
       const auto& r = obs.rows[i];
       t.rows.push_back({static_cast<int>(i), r.line, r.offset, r.heading, r.x_min, r.x_max,
-                        r.support, 0.0, obs.stamp});
+                        r.support, 0.0, obs.stamp, core::centre_offset(r), r.half_width});
+      centres.push_back(core::centre_offset(r));
     }
+    if (const double s = robust_spacing(std::move(centres)); s > 0.0) spacing_ = s;
+    t.row_spacing = spacing_;
     t.left = obs.left;
     t.right = obs.right;
     t.status = TrackStatus::tracking;

@@ -1,5 +1,6 @@
 #include "rownav/track/row_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rownav::track {
@@ -58,6 +59,22 @@ core::Line2 centre_from_one(const core::Line2& row, bool row_is_left, double spa
 double spacing_between(const core::Line2& left, const core::Line2& right) {
   const core::Line2 l = forward(left), r = forward(right);
   return l.signed_distance(Eigen::Vector2d(0.0, r.y_at(0.0))) * -1.0;
+}
+
+double robust_spacing(std::vector<double> centres) {
+  std::sort(centres.begin(), centres.end());
+  std::vector<double> d;
+  for (std::size_t i = 1; i < centres.size(); ++i)
+    if (centres[i] - centres[i - 1] > 0.0) d.push_back(centres[i] - centres[i - 1]);
+  if (d.empty()) return 0.0;
+  std::vector<double> sorted = d;
+  std::sort(sorted.begin(), sorted.end());
+  // The lower median: with one normal and one double difference (a row missing) it is the normal.
+  const double ref = sorted[(sorted.size() - 1) / 2];
+  for (double& x : d) x /= std::max(1.0, std::round(x / ref));
+  std::sort(d.begin(), d.end());
+  const std::size_t n = d.size();
+  return n % 2 ? d[n / 2] : 0.5 * (d[n / 2 - 1] + d[n / 2]);
 }
 
 bool finite(const core::Pose2& p) {

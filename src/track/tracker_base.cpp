@@ -22,15 +22,19 @@ void TrackerConfig::validate() const {
   core::check_positive(max_speed, "max_speed");
   core::check_positive(max_yaw_rate_deg, "max_yaw_rate_deg");
   core::check_positive(default_row_spacing, "default_row_spacing");
+  core::check_range(spacing_window, 1, 100000, "spacing_window");
   core::check(std::isfinite(target_offset), "target_offset", "must be finite");
 }
 
-TrackerBase::TrackerBase(const TrackerConfig& common) : common_((common.validate(), common)) {}
+TrackerBase::TrackerBase(const TrackerConfig& common)
+    : common_((common.validate(), common)), spacing_(common.spacing_window) {}
 
 void TrackerBase::reset() {
   clear_models();
   started_ = false;
   last_ = RowTracking{};
+  spacing_.reset();
+  width_ = 0.0;
 }
 
 RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pose2& T_odom_base) {
@@ -52,6 +56,7 @@ RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pos
   RowTracking out;
   out.stamp = obs.stamp;
   if (usable(obs) && correct(obs, T_odom_base)) {
+    spacing_.add(obs);
     last_seen_ = obs.stamp;
     out.status = TrackStatus::tracking;
   } else if (has_model() && obs.stamp - last_seen_ <= common_.max_coast_time) {
@@ -63,6 +68,7 @@ RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pos
   out.time_since_observation = has_model() ? obs.stamp - last_seen_ : 0.0;
   if (has_model()) {
     describe(out);
+    fill_centres(out);
     fill_deviations(out);
   }
   if (out.left < 0 && out.right < 0) out.status = TrackStatus::lost;
@@ -78,14 +84,35 @@ RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pos
   return out;
 }
 
-void TrackerBase::fill_deviations(RowTracking& out) const {
+void TrackerBase::fill_centres(RowTracking& out) const {
+  if (!(out.row_spacing > 0.0)) out.row_spacing = spacing_.spacing();
+  for (std::size_t i = 0; i < out.rows.size(); ++i) {
+    TrackedRow& r = out.rows[i];
+    if (std::isfinite(r.centre_offset)) continue;
+    const bool followed = static_cast<int>(i) == out.left || static_cast<int>(i) == out.right;
+    const bool left = r.offset >= 0.0;
+    const double c = std::max(std::abs(r.line_base.direction.x()), 1e-3);
+    r.centre_offset = r.offset + (followed ? (left ? 1.0 : -1.0) * spacing_.shift(left) / c : 0.0);
+    if (followed) r.half_width = spacing_.half_width(left);
+  }
+}
+
+void TrackerBase::fill_deviations(RowTracking& out) {
   const bool has_l = out.left >= 0, has_r = out.right >= 0;
   if (!has_l && !has_r) return;
-  const double spacing = out.row_spacing > 0.0 ? out.row_spacing : common_.default_row_spacing;
   const auto row = [&](int i) { return out.rows[static_cast<std::size_t>(i)].line_base; };
+  // A single row's corridor centre lies half the corridor width from its fitted line: the last
+  // width measured between the followed lines, else the spacing less the canopy (issue 10: the
+  // spacing is centre to centre, the lines are the corridor-side faces of opaque canopies).
+  if (has_l && has_r) width_ = std::max(spacing_between(row(out.left), row(out.right)), 0.0);
+  const TrackedRow& one = out.rows[static_cast<std::size_t>(has_l ? out.left : out.right)];
+  const double spacing = out.row_spacing > 0.0 ? out.row_spacing : common_.default_row_spacing;
+  const double canopy = std::abs(one.centre_offset - one.offset);
+  out.corridor_width = width_ > 0.0 ? width_ : spacing > 2.0 * canopy ? spacing - 2.0 * canopy : spacing;
+  const double single = out.corridor_width;
   out.centre_line_base = has_l && has_r ? centre_between(row(out.left), row(out.right))
-                         : has_l        ? centre_from_one(row(out.left), true, spacing)
-                                        : centre_from_one(row(out.right), false, spacing);
+                         : has_l        ? centre_from_one(row(out.left), true, single)
+                                        : centre_from_one(row(out.right), false, single);
   const Deviation d = deviation(out.centre_line_base);
   out.lateral_error = d.lateral;
   out.heading_error = d.heading;

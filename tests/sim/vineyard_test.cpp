@@ -7,6 +7,7 @@
 #include <map>
 
 #include "rownav/sim/plant_geometry.hpp"
+#include "rownav/sim/ray_caster.hpp"
 #include "rownav/sim/row_dressing.hpp"
 
 namespace rownav::sim {
@@ -286,6 +287,43 @@ TEST(Vineyard, ValidateNamesTheField) {
   c = VineyardConfig{};
   c.cordon_height_max = 0.1;  // below the minimum
   EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+TEST(Vineyard, SolidHedgeIsAContinuousMoundFromTheGround) {
+  // Issue 10: a real photogrammetric vineyard is a continuous mound, no trunk zone visible.
+  VineyardConfig c;
+  c.rows = 3;
+  c.row_length = 12.0;
+  c.row_spacing = 1.75;
+  c.canopy_width = 0.6;
+  c.canopy_top = 1.8;
+  c.canopy_shape = CanopyShape::solid_hedge;
+  c.missing_plants_percent = 0.0;
+  c.gap_count = 0;
+  c.wires = false;
+  const Field f = generate_vineyard(c, flat(), 5);
+  EXPECT_EQ(count_label(f, SurfaceClass::trunk), 0u);
+  const RayCaster world(f.mesh);
+  // Horizontal rays from the middle of corridor 0 towards row 1 (at y = 1.75): every height from
+  // just above the ground to near the top hits the canopy, the face nearer the row centre the
+  // higher it is (a mound), within the roughness of the configured width.
+  double previous = 0.0;
+  for (double z = 0.1; z < 1.6; z += 0.25) {
+    for (double x = 2.0; x < 10.0; x += 0.7) {
+      const RayHit h = world.cast({float(x), 0.875f, float(z)}, {0.0f, 1.0f, 0.0f}, 0.0f, 2.0f);
+      ASSERT_TRUE(std::isfinite(h.distance)) << "gap at x " << x << ", z " << z;
+      EXPECT_EQ(h.label, SurfaceClass::canopy);
+      const double depth = 0.875 + h.distance - (1.75 - 0.5 * c.canopy_width);  // behind the foot
+      EXPECT_GT(depth, -0.1 * c.canopy_width) << "x " << x << ", z " << z;
+      EXPECT_LT(depth, 0.5 * c.canopy_width) << "x " << x << ", z " << z;
+    }
+    const RayHit h = world.cast({6.0f, 0.875f, float(z)}, {0.0f, 1.0f, 0.0f}, 0.0f, 2.0f);
+    EXPECT_GT(h.distance, previous - 0.1) << "z " << z;
+    previous = h.distance;
+  }
+  // Nothing above the top (+5 % vigour), the posts hidden inside.
+  const RayHit above = world.cast({6.0f, 0.875f, 1.95f}, {0.0f, 1.0f, 0.0f}, 0.0f, 2.0f);
+  EXPECT_FALSE(std::isfinite(above.distance) && above.label == SurfaceClass::canopy);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 /// @file row_observation.hpp What a row detector sees in one frame: the common heading, every
 /// visible row as a line in the robot frame, and the corridor the robot is in.
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -28,7 +29,23 @@ struct RowLine {
   double x_max = 0.0;    ///< [m]
   int support = 0;       ///< points assigned to the row
   double rms = 0.0;      ///< [m] RMS perpendicular distance of the support to the line
+  /// [m] from `line` to the row's centre line, across the row, away from the robot (issue 10).
+  /// `line` is what the detector fits: the corridor-side face for an opaque canopy (a solid
+  /// hedge), the trunk line when trunks are seen; the centre line stands under the canopy's
+  /// crown (detect/row_profile.hpp). 0 when unknown (2D scans): the line is the centre.
+  double centre_shift = 0.0;
+  /// [m] canopy half width: the inner face lies this far from the centre line towards the
+  /// robot (issue 10; 0 when unknown)
+  double half_width = 0.0;
 };
+
+/// [m] lateral position at x = 0 of the row's centre line (left +): the fitted line moved by
+/// centre_shift away from the robot. Row spacing is centre to centre (issue 10).
+inline double centre_offset(const RowLine& r) {
+  const double c = std::abs(r.line.direction.normalized().x());
+  const double out = r.offset >= 0.0 ? 1.0 : -1.0;
+  return r.offset + out * r.centre_shift / (c > 1e-3 ? c : 1e-3);
+}
 
 /// A corridor observation: the centre line between the two rows around the robot.
 struct CorridorObservation {
@@ -36,7 +53,9 @@ struct CorridorObservation {
                          ///< the robot's lateral error is -offset
   double heading = 0.0;  ///< [rad] corridor direction in the robot frame; the robot's heading
                          ///< error is -heading
-  double width = 0.0;    ///< [m] distance between the two rows (0 when unknown)
+  /// [m] free width between the two rows' fitted lines (face to face for opaque canopies, 0
+  /// when unknown). NOT the row spacing (centre to centre, issue 10): never use it as one.
+  double width = 0.0;
 };
 
 /// A detector's answer for one frame.

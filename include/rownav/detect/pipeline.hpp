@@ -10,6 +10,7 @@
 #include "rownav/core/row_observation.hpp"
 #include "rownav/core/scan2d.hpp"
 #include "rownav/detect/row_detector.hpp"
+#include "rownav/detect/row_profile.hpp"
 #include "rownav/preprocess/preprocessor.hpp"
 
 namespace rownav::detect {
@@ -56,6 +57,7 @@ class DetectionPipeline {
 
   preprocess::Preprocessor preprocessor_;
   std::unique_ptr<RowDetector> detector_;
+  RowProfile profile_;  // every row's centre and half width (issue 10)
   Eigen::Isometry3d T_base_lidar_;
   core::PointCloud cloud_base_;
   std::vector<Eigen::Vector2f> points_base_, last_points_;

@@ -19,6 +19,9 @@ namespace rownav::sim {
 enum class GrowthStage : std::uint8_t { low, medium, high };
 /// Amount of inter-row grass and weeds.
 enum class WeedLevel : std::uint8_t { none, some, many };
+/// How the canopy is built: VSP foliage clumps over visible trunks, or a solid hedge (issue 10:
+/// a real photogrammetric vineyard mesh is a continuous mound from the ground up, no trunk zone).
+enum class CanopyShape : std::uint8_t { clumps, solid_hedge };
 
 /// Vineyard geometry. Rows run along +x from x = 0, row k at y = k * row_spacing.
 struct VineyardConfig {
@@ -46,6 +49,16 @@ struct VineyardConfig {
   double curvature_wavelength = 80.0;  ///< [m] wavelength of the bend
   double headland_width = 6.0;         ///< [m] free ground beyond the row ends
   WeedLevel weeds = WeedLevel::none;   ///< inter-row grass and weeds
+  /// clumps: trunks, cordon, foliage clumps (stage); solid_hedge: each vine is a closed mound
+  /// segment from the ground to ~canopy_top, canopy_width wide at the ground (stage, shoots and
+  /// trunk heights unused; posts and wires stay inside). Issue 10, a real vineyard mesh.
+  CanopyShape canopy_shape = CanopyShape::clumps;
+  /// [-] solid_hedge cross-section |y / half_width|^p + (z / top)^p = 1: 2 = half ellipse (a
+  /// rounded mound, issue 10), 4 = steep faces and a flat crown, large = a box wall (rownav)
+  double hedge_roundness = 2.0;
+  /// [-] solid_hedge surface roughness: each profile vertex moves across the row by up to this
+  /// fraction of the half width; vine-to-vine vigour varies the width +-10 % (rownav)
+  double hedge_roughness = 0.1;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -73,6 +86,9 @@ struct VineyardConfig {
     v("curvature_wavelength", s.curvature_wavelength);
     v("headland_width", s.headland_width);
     v("weeds", s.weeds);
+    v("canopy_shape", s.canopy_shape);
+    v("hedge_roundness", s.hedge_roundness);
+    v("hedge_roughness", s.hedge_roughness);
   }
   void validate() const;
 };
@@ -98,14 +114,32 @@ struct rownav::core::EnumNames<rownav::sim::WeedLevel> {
       {{E::none, "none"}, {E::some, "some"}, {E::many, "many"}}};
 };
 
+template <>
+struct rownav::core::EnumNames<rownav::sim::CanopyShape> {
+  using E = rownav::sim::CanopyShape;
+  static constexpr std::array<std::pair<E, std::string_view>, 2> values{
+      {{E::clumps, "clumps"}, {E::solid_hedge, "solid_hedge"}}};
+};
+
 namespace rownav::sim {
 
 /// Adds one vine standing at ground point `base` of a row heading along unit `tangent`: an
 /// 8-sided trunk up to a random cordon height in [cordon_height_min, cordon_height_max], a
 /// cordon arm along the row, jittered foliage clumps (count, size and top by `config.stage`) and
 /// shoots protruding up to `config.shoot_protrusion` beyond the wall.
+/// With `config.canopy_shape == solid_hedge` adds add_hedge_segment() instead.
 /// @return [m] top of this vine's canopy above the ground
 double add_vine(TriangleMesh& mesh, const Eigen::Vector3d& base, const Eigen::Vector2d& tangent,
                 const VineyardConfig& config, std::mt19937_64& rng);
+
+/// Adds one plant_spacing long piece of a solid hedge centred on ground point `base` of a row
+/// heading along unit `tangent`: a closed prism whose cross-section is the superellipse of
+/// `config.hedge_roundness` from the ground (0.05 m below, so no gap shows over rough ground)
+/// to ~canopy_top, rough by `config.hedge_roughness`, with end caps (gaps and row ends show the
+/// cross-section). Pieces overlap 2 cm so a continuous row has no cracks.
+/// @return [m] top of this piece above the ground
+double add_hedge_segment(TriangleMesh& mesh, const Eigen::Vector3d& base,
+                         const Eigen::Vector2d& tangent, const VineyardConfig& config,
+                         std::mt19937_64& rng);
 
 }  // namespace rownav::sim

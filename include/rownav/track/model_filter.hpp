@@ -24,7 +24,9 @@ struct ModelFilterConfig {
   double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
   double max_slope_change = 0.1;   ///< [-] |a - a_prev| above this: inconsistent (rownav)
   double max_offset_change = 0.25;  ///< [m] |b - b_prev| above this: inconsistent (rownav)
-  double spacing_tolerance = 0.4;   ///< [m] |b_l - b_r - mean spacing| above this: inconsistent
+  /// [m] |b_l - b_r - mean width| above this: inconsistent (b_l - b_r: the width between the
+  /// fitted lines, not the row spacing, issue 10)
+  double spacing_tolerance = 0.4;
   /// [-] successive rejected frames that erase the followed models (initialisation mode);
   /// "chosen heuristically" in Malavazi 2018 sec. 2.3.2
   int permanence_limit = 5;

@@ -72,9 +72,11 @@ class ModelMatchingTracker : public TrackerBase {
   void describe(RowTracking& out) const override;
 
  private:
-  /// A row centre (x_i, y_i, tan gamma_i) in the model frame (Nehme 2021 eq. (3)).
+  /// A row centre (x_i, y_i, tan gamma_i) in the model frame (Nehme 2021 eq. (3)), with the
+  /// observed row's centre shift and canopy half width (core::RowLine, issue 10).
   struct Centre {
     double x = 0.0, y = 0.0, tan_gamma = 0.0;
+    double shift = 0.0, half_width = 0.0;
   };
   /// A row model y = w1 x + w0 in the model frame (Nehme 2021 eq. (4)).
   struct Model {

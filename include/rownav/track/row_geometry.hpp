@@ -3,6 +3,7 @@
 /// a base frame, moving them between base frames by odometry, and the corridor deviations of a
 /// pair of followed rows.
 #include <optional>
+#include <vector>
 
 #include "rownav/core/line2.hpp"
 #include "rownav/core/pose2.hpp"
@@ -47,6 +48,12 @@ core::Line2 centre_from_one(const core::Line2& row, bool row_is_left, double spa
 
 /// Perpendicular distance between two near-parallel lines, measured at x = 0 of the first.
 double spacing_between(const core::Line2& left, const core::Line2& right);
+
+/// [m] row spacing from row centre offsets (any order; issue 10): every difference of adjacent
+/// centres counts, a difference spanning k spacings (a row missing, undetected or hidden) as k
+/// of them, k = its ratio to the lower median difference rounded; the median of the normalised
+/// differences. 0 with fewer than two centres.
+double robust_spacing(std::vector<double> centres);
 
 /// True when every coordinate of the pose is finite.
 bool finite(const core::Pose2& p);

@@ -4,6 +4,7 @@
 /// CONTRACT shared by the trackers (model_matching, line_ekf, model_filter), navigate/ and the
 /// closed-loop runner. Implementations may add fields but must keep these.
 #include <array>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -34,6 +35,11 @@ struct TrackedRow {
   int support = 0;         ///< points / observations behind the model
   double age = 0.0;        ///< [s] since the model was created
   double last_seen = 0.0;  ///< [s] stamp of the last observation that updated it
+  /// [m] lateral position at x = 0 of the row's centre line (left +): line_base is the fitted
+  /// (corridor-side) line, the centre stands behind it (core::RowLine::centre_shift, issue 10).
+  /// Trackers may leave it NaN: TrackerBase then fills it from the recent observations.
+  double centre_offset = std::numeric_limits<double>::quiet_NaN();
+  double half_width = 0.0;  ///< [m] canopy half width (0: unknown)
 };
 
 /// A tracker's answer for one frame.
@@ -46,7 +52,14 @@ struct RowTracking {
   double lateral_error = 0.0;
   double heading_error = 0.0;    ///< [rad] robot heading minus the corridor heading
   core::Line2 centre_line_base;  ///< corridor centre line in the base frame, oriented forward
-  double row_spacing = 0.0;      ///< [m] estimated spacing between adjacent rows (0: unknown)
+  /// [m] row spacing, centre line to centre line, from every tracked row (robust to a missing
+  /// row, track/row_geometry.hpp robust_spacing; 0: unknown). Never the corridor width: an
+  /// opaque canopy's fitted lines are its faces (issue 10).
+  double row_spacing = 0.0;
+  /// [m] between the followed rows' fitted lines (face to face for an opaque canopy), the last
+  /// one measured when a side is missing (0: unknown); a single row's corridor centre lies half
+  /// of it away
+  double corridor_width = 0.0;
   std::vector<TrackedRow> rows;  ///< tracked models, sorted right (y < 0) to left
   int left = -1;                 ///< index in rows of the followed left row, -1 if none
   int right = -1;                ///< index in rows of the followed right row, -1 if none

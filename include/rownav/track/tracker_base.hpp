@@ -9,6 +9,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/track/row_geometry.hpp"
+#include "rownav/track/row_spacing.hpp"
 #include "rownav/track/row_tracker.hpp"
 
 namespace rownav::track {
@@ -26,6 +27,9 @@ struct TrackerConfig {
   /// [m] spacing assumed until two rows are seen; the corridor centre of a single row lies half
   /// of it away (Malavazi 2018 sec. 2.3.3 "a default distance"). 2 m: vineyards.
   double default_row_spacing = 2.0;
+  /// [frames] row spacing (centre to centre, every row seen) and the followed rows' centre
+  /// shifts are medians over the latest this many usable frames (~5 s at 10 Hz; issue 10)
+  int spacing_window = 50;
   TargetRow target_row = TargetRow::none;  ///< implement row: none, left or right
   double target_offset =
       0.0;  ///< [m] wanted signed offset of the base from the target row (left +)
@@ -36,6 +40,7 @@ struct TrackerConfig {
     v("max_speed", s.max_speed);
     v("max_yaw_rate_deg", s.max_yaw_rate_deg);
     v("default_row_spacing", s.default_row_spacing);
+    v("spacing_window", s.spacing_window);
     v("target_row", s.target_row);
     v("target_offset", s.target_offset);
   }
@@ -64,13 +69,16 @@ class TrackerBase : public RowTracker {
                        double dt) = 0;
   /// Updates the models with a usable observation; false when nothing was accepted.
   virtual bool correct(const core::RowObservation& obs, const core::Pose2& T_odom_base) = 0;
-  /// Fills rows, left, right and row_spacing (0: unknown) of `out`.
+  /// Fills rows, left, right and row_spacing (0: unknown, then the base's estimate from every
+  /// row seen is used) of `out`; a row's centre_offset left NaN is filled by the base.
   virtual void describe(RowTracking& out) const = 0;
   /// Last say on the output (e.g. a FIR filter); the default does nothing.
   virtual void finish(RowTracking& /*out*/) {}
 
  private:
-  void fill_deviations(RowTracking& out) const;
+  void fill_deviations(RowTracking& out);
+  /// Row spacing and centre lines from the recent observations where the tracker gave none.
+  void fill_centres(RowTracking& out) const;
 
   TrackerConfig common_;
   bool started_ = false;
@@ -78,6 +86,8 @@ class TrackerBase : public RowTracker {
   double last_seen_ = 0.0;  // stamp of the last frame whose observation updated the models
   core::Pose2 last_pose_;
   RowTracking last_;
+  RowSpacingEstimator spacing_;  // centre to centre, every row seen (issue 10)
+  double width_ = 0.0;  // [m] last width between the followed rows' lines
 };
 
 }  // namespace rownav::track
