@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "rownav/io/closed_loop_runner.hpp"
 #include "rownav/io/controller_registry.hpp"
+#include "rownav/io/fault_metrics.hpp"
 #include "rownav/io/tracker_registry.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/mission_io.hpp"
@@ -61,6 +62,16 @@ void load_nav_stack(const RunArgs& a, const sim::FieldConfig& field, io::ClosedL
   s.nav = io::load_config<navigate::NavStackConfig>(file);
 }
 
+// A --faults file: only a `faults:` section (a mistyped top-level key is an error, not ignored).
+struct FaultsFile {
+  sim::FaultsConfig faults;
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("faults", s.faults);
+  }
+  void validate() const { core::validate_nested(faults, "faults"); }
+};
+
 void print_summary(const io::RunSummary& s, const RunArgs& a) {
   auto show = [](const std::optional<double>& v) {
     std::ostringstream o;
@@ -97,6 +108,7 @@ bool run_mission(const RunArgs& a) {
   s.robot = load_robot(a.robot);
   s.sensors = load_sensors(a.sensor, "");
   s.sensors.seed = a.seed;
+  if (a.faults) s.sensors.faults = io::load_config<FaultsFile>(*a.faults).faults;
   s.mission = io::load_mission(a.mission);
   load_nav_stack(a, field_config, s);
   if (a.row_end_policy) s.nav.navigator.row_ends.policy = *a.row_end_policy;
@@ -104,6 +116,7 @@ bool run_mission(const RunArgs& a) {
   s.detect_config =
       crop_config_for(a, field_config, a.detect_config, "detect", "--detect-config");
   s.time_limit = a.time_limit;
+  if (s.sensors.faults.any()) s.settle = 3.0;  // where the robot comes to rest after a stop
   make_stack(a, s);
   std::optional<io::Progress> bar;
   if (!a.quiet) {
@@ -122,8 +135,14 @@ bool run_mission(const RunArgs& a) {
                      a.controller,
                      a.seed};
   io::write_run_report(out.staging(), r, summary, names, field);
+  std::optional<io::FaultReport> faults;
+  if (s.sensors.faults.any()) {
+    faults = io::fault_report(r, s.sensors.faults);
+    io::write_fault_report(out.staging(), *faults, summary);
+  }
   out.commit();
   print_summary(summary, a);
+  if (faults) std::cout << io::describe(*faults);
   return summary.success;
 }
 
@@ -169,6 +188,10 @@ void add_run_command(CLI::App& app) {
               {"nearest", navigate::RowEndPolicy::nearest},
               {"line_fitting", navigate::RowEndPolicy::line_fitting}},
           CLI::ignore_case));
+  c->add_option("--faults", a->faults,
+                "faults YAML (config/faults): its `faults:` section (sim::FaultsConfig) replaces "
+                "the sensors' one; writes faults.json")
+      ->check(CLI::ExistingFile);
   c->add_option("--seed", a->seed, "simulation seed (default 1)");
   c->add_option("--time-limit", a->time_limit, "[s] simulated time limit (default 1800)");
   c->add_flag("--quiet", a->quiet, "no progress bar");

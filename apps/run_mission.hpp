@@ -16,6 +16,8 @@ struct RunArgs {
   std::filesystem::path config_dir = "config";
   std::optional<std::filesystem::path> sensor, detect_config, track_config, control_config,
       nav_config;
+  /// a YAML file with a `faults:` section (sim::FaultsConfig), replacing the sensors' faults
+  std::optional<std::filesystem::path> faults;
   std::string detector = "hough_skew";
   std::string tracker = "model_filter";
   std::string controller = "stanley";

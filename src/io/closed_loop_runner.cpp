@@ -104,6 +104,8 @@ class RunnerSink : public sim::SimSink {
       if ((p.position - g.T_world_base.translation()).norm() < 3.0 &&
           polygon_distance(fp, p.position) < p.radius)
         s.collision = true;
+    s.obstacle_clearance = g.obstacle_clearance;
+    if (g.obstacle_clearance <= 0.0) s.collision = true;  // touched the walking person
     result_.samples.push_back(s);
   }
 
@@ -252,6 +254,11 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
       next_progress = sim.time() + 1.0;
       setup.progress(sim.time(), static_cast<double>(out.served) / result.order.size());
     }
+  }
+  if (stack.navigator().state() == navigate::NavState::safe_stop) {
+    sink.cmd = core::Twist2();
+    for (const double end = sim.time() + setup.settle; sim.time() < end - 1e-9;)
+      sim.step(sink.cmd, sink);
   }
   if (log) log->commit();
   result.final_state = stack.navigator().state();

@@ -68,6 +68,15 @@ NavOutput Navigator::step(const NavInput& in) {
   robot_ = in.robot;
   last_stamp_ = in.stamp;
   if (last_seen_ < 0.0) last_seen_ = in.stamp;
+  // Outside a row too (issue 13, a person walking in): the person's shadow on the rows ahead
+  // looked like the row end, and `exiting` then drove into it by odometry.
+  if (state_ != NavState::in_row && state_ != NavState::done && state_ != NavState::safe_stop &&
+      obstacle_ahead(in)) {
+    stop(StopReason::obstacle, out, in.stamp,
+         "obstacle within " + fmt(config_.stop_distance) + " m (" +
+             std::string(core::enum_name(state_)) + ")");
+    return finish(std::move(out));
+  }
   switch (state_) {
     case NavState::in_row:
       in_row(in, out);

@@ -138,6 +138,19 @@ void Lidar::cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp
   const auto t_max = static_cast<float>(config_.range_max);
   world.cast_batch(origins_.data(), dirs_.data(), n, 0.0f, t_max, hits_.data());
   if (config_.foliage_pass_probability > 0.0) pass_foliage(world);
+  if (!obstacles_.empty()) cast_obstacles();
+}
+
+void Lidar::cast_obstacles() {
+  for (std::size_t i = 0; i < hits_.size(); ++i)
+    for (const auto& box : obstacles_) {
+      const float reach = std::min(hits_[i].distance, static_cast<float>(config_.range_max));
+      const auto h = intersect(box, origins_[i], dirs_[i], reach);
+      if (!h || h->distance >= hits_[i].distance) continue;
+      hits_[i].distance = h->distance;
+      hits_[i].label = SurfaceClass::obstacle;
+      hits_[i].normal = h->normal;
+    }
 }
 
 void Lidar::pass_foliage(const RayCaster& world) {

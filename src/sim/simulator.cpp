@@ -41,6 +41,7 @@ void SimConfig::validate() const {
   core::check_range(physics_rate_hz, 10.0, 10000.0, "physics_rate_hz");
   core::check_range(ground_truth_rate_hz, 0.1, physics_rate_hz, "ground_truth_rate_hz");
   core::check_positive(truth_reach, "truth_reach");
+  core::validate_nested(faults, "faults");
 }
 
 Simulator::Simulator(const Field& field, const RobotConfig& robot, const SimConfig& config,
@@ -55,7 +56,8 @@ Simulator::Simulator(const Field& field, const RobotConfig& robot, const SimConf
       crush_(field),
       encoders_(config.encoders, config.seed * 7919 + 3),
       imu_(config.imu, config.seed * 7919 + 4),
-      gnss_(config.gnss, config.seed * 7919 + 5) {
+      gnss_(config.gnss, config.seed * 7919 + 5),
+      faults_(config.faults, config.seed * 7919 + 6 + config.faults.seed * 104729) {
   config_.validate();
   // Proprioception and truth sample n (n >= 1) is due at n / rate: the state at t = 0 is the
   // start pose, not a measurement, and starting at n = 0 emitted an extra sample at the first
@@ -117,10 +119,30 @@ void Simulator::step(const core::Twist2& cmd, SimSink& sink) {
   while (history_.size() > 2 && history_[1].first < t - keep) history_.pop_front();
   crush_.update(robot_.footprint_world());
   update_truth();
-  emit_proprioception(sink);
-  emit_lidar(sink);
-  if (due(n_truth_, config_.ground_truth_rate_hz, t)) sink.on_ground_truth(truth_now_);
+  // Without faults the samples go straight to the sink (bit-identical to a run before faults).
+  SimSink* out = &sink;
+  if (config_.faults.any()) {
+    faults_.begin_step(t, robot_.state().pose, sink);
+    out = &faults_;
+    update_person(t);
+  }
+  emit_proprioception(*out);
+  emit_lidar(*out);
+  if (due(n_truth_, config_.ground_truth_rate_hz, t)) out->on_ground_truth(truth_now_);
   last_twist_ = robot_.state().twist;
+}
+
+std::optional<ObstacleBox> Simulator::person_at(double t) const {
+  auto box = faults_.person_at(t);
+  if (box) box->base.z() = field_.terrain.height(box->base.x(), box->base.y());
+  return box;
+}
+
+void Simulator::update_person(double t) {
+  const auto box = person_at(t);
+  if (!box) return;
+  // A person is not a plant: touching one is a collision, measured as a clearance.
+  truth_now_.obstacle_clearance = clearance(robot_.footprint_world(), footprint(*box));
 }
 
 void Simulator::emit_proprioception(SimSink& sink) {
@@ -147,6 +169,10 @@ void Simulator::emit_lidar(SimSink& sink) {
   ++n_sweeps_;
   const PoseAt pose = [this](double t) { return pose_at(t); };
   std::vector<SurfaceClass> labels;
+  // The person where it is halfway through the sweep (it moves ~5 cm in half a 10 Hz sweep).
+  std::vector<ObstacleBox> boxes;
+  if (const auto box = person_at(start + 0.5 / rate)) boxes.push_back(*box);
+  lidar_.set_obstacles(std::move(boxes));
   if (config_.lidar.kind == LidarKind::spinning) {
     sink.on_cloud(lidar_.sweep(caster_, pose, start, &labels), labels);
   } else {

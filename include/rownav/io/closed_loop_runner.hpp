@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,6 +44,9 @@ struct ClosedLoopSetup {
   /// directory (samples + inputs.csv with each command the stack answered): its replay through
   /// io::replay_input_log must give the same commands.
   std::filesystem::path record_inputs;
+  /// [s] simulated on with a zero command after a safe stop, so that the robot comes to rest
+  /// and the samples show where (the fault runs of issue 13: the clearance to a person)
+  double settle = 0.0;
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
 };
@@ -60,7 +64,9 @@ struct RunSample {
   double heading_error = 0.0;  ///< [rad] true
   core::Twist2 twist, cmd;
   int plants_crushed = 0;
-  bool collision = false;  ///< footprint over a post this sample
+  bool collision = false;  ///< footprint over a post (or touching a person) this sample
+  /// [m] footprint to the walking person of the simulator's faults (inf: none)
+  double obstacle_clearance = std::numeric_limits<double>::infinity();
 };
 
 /// Per LiDAR frame, in a row: the tracker against the truth.

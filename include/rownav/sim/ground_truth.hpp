@@ -2,6 +2,7 @@
 /// @file ground_truth.hpp What the simulator knows at every step and a robot does not.
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -46,6 +47,9 @@ struct GroundTruth {
   double heading_error = 0.0;  ///< [rad] robot heading minus the corridor heading
   std::vector<RowTruth> rows;  ///< rows within the LiDAR's reach, nearest first
   int plants_crushed = 0;      ///< cumulative count of plants the footprint has run over
+  /// [m] from the footprint to the walking person of the faults (sim/faults.hpp); 0: contact
+  /// (a collision), infinity: no person
+  double obstacle_clearance = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace rownav::sim

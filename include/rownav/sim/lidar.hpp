@@ -18,6 +18,7 @@
 #include "rownav/core/point_cloud.hpp"
 #include "rownav/core/scan2d.hpp"
 #include "rownav/sim/lidar_presets.hpp"
+#include "rownav/sim/obstacle_box.hpp"
 #include "rownav/sim/ray_caster.hpp"
 #include "rownav/sim/triangle_mesh.hpp"
 
@@ -116,7 +117,13 @@ class Lidar {
 
   const LidarConfig& config() const { return config_; }
 
+  /// Boxes outside the static scene (a walking person) that the next sweeps / scans also hit,
+  /// labelled `obstacle`; empty: none (the default).
+  void set_obstacles(std::vector<ObstacleBox> boxes) { obstacles_ = std::move(boxes); }
+
  private:
+  /// Replaces a hit by a nearer one on an obstacle box.
+  void cast_obstacles();
   /// Casts every (column, ring in `rings`) ray into hits_ (foliage passes included).
   void cast_all(const RayCaster& world, const PoseAt& pose_at, double stamp,
                 const std::vector<int>& rings);
@@ -148,6 +155,7 @@ class Lidar {
   std::vector<std::size_t> pass_idx_;
   std::vector<std::uint32_t> order_;  // column-major ray (c * rings + k) -> position in the cast
   std::vector<Eigen::Isometry3f> column_pose_;  // T_world_lidar of each column
+  std::vector<ObstacleBox> obstacles_;
   float spare_gaussian_ = 0.0f;  // second Box-Muller value, used by the next gaussian()
   bool has_spare_ = false;
 };

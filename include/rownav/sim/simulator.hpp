@@ -19,8 +19,11 @@
 #include "rownav/sim/lidar.hpp"
 #include "rownav/sim/lidar_presets.hpp"
 #include "rownav/sim/proprioception.hpp"
+#include "rownav/sim/fault_config.hpp"
+#include "rownav/sim/faults.hpp"
 #include "rownav/sim/ray_caster.hpp"
 #include "rownav/sim/robot.hpp"
+#include "rownav/sim/sim_sink.hpp"
 
 namespace rownav::sim {
 
@@ -34,6 +37,7 @@ struct SimConfig {
   double ground_truth_rate_hz = 20.0;  ///< [Hz] ground-truth samples emitted
   double truth_reach = 10.0;           ///< [m] rows within this distance are listed in the truth
   std::uint64_t seed = 1;              ///< seeds every noise source
+  FaultsConfig faults;  ///< injected sensor faults and a walking person (default: none)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -45,22 +49,9 @@ struct SimConfig {
     v("ground_truth_rate_hz", s.ground_truth_rate_hz);
     v("truth_reach", s.truth_reach);
     v("seed", s.seed);
+    v("faults", s.faults);
   }
   void validate() const;
-};
-
-/// Receives what the simulator produces, in time order. Default implementations ignore data.
-class SimSink {
- public:
-  virtual ~SimSink() = default;
-  /// A 3D sweep (spinning LiDAR), stamped at its start, emitted when the sweep ends.
-  virtual void on_cloud(const core::PointCloud&, const std::vector<SurfaceClass>& /*labels*/) {}
-  /// A planar scan (2D LiDAR).
-  virtual void on_scan(const core::Scan2D&, const std::vector<SurfaceClass>& /*labels*/) {}
-  virtual void on_encoders(const core::WheelEncoderSample&) {}
-  virtual void on_imu(const core::ImuSample&) {}
-  virtual void on_gnss(const core::GnssFix&) {}
-  virtual void on_ground_truth(const GroundTruth&) {}
 };
 
 /// Steps a robot through a field. Construction builds the Embree scene (may throw on bad
@@ -84,6 +75,8 @@ class Simulator {
   const RayCaster& world() const { return caster_; }
   const Lidar& lidar() const { return lidar_; }
   const SimConfig& config() const { return config_; }
+  /// The walking person of the faults (on the terrain) at time t; nullopt without one.
+  std::optional<ObstacleBox> person_at(double t) const;
   /// T_world_base in 3D (terrain height, roll and pitch) for a planar pose.
   Eigen::Isometry3d pose3d(const core::Pose2& T_world_base) const;
 
@@ -92,6 +85,7 @@ class Simulator {
   void emit_proprioception(SimSink& sink);
   Eigen::Isometry3d pose_at(double t) const;
   void update_truth();
+  void update_person(double t);
 
   const Field& field_;
   SimConfig config_;
@@ -104,6 +98,7 @@ class Simulator {
   WheelEncoders encoders_;
   Imu imu_;
   Gnss gnss_;
+  FaultInjector faults_;
   GroundTruth truth_now_;
   std::deque<std::pair<double, Eigen::Isometry3d>> history_;  // recent T_world_base for sweeps
   // Samples emitted so far per stream; due times are n / rate, so stamps do not drift.
