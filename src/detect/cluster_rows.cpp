@@ -117,6 +117,7 @@ void ClusterRowsConfig::validate() const {
   core::check_range(max_row_roundness, 0.0, 1.0, "max_row_roundness");
   core::check_range(max_row_angle_deg, 0.0, 90.0, "max_row_angle_deg");
   core::check(std::isfinite(lookahead), "lookahead", "must be finite");
+  core::validate_nested(nearest_row, "nearest_row");
 }
 
 ClusterRowsDetector::ClusterRowsDetector(const ClusterRowsConfig& config) : config_(config) {
@@ -165,6 +166,8 @@ core::RowObservation ClusterRowsDetector::detect(const DetectorInput& input) {
   }
   obs.heading = std::nan("");
   finalize_observation(obs, c.lookahead);
+  // Issue 11: a near row too sparse to form a cluster (nearest_row.hpp).
+  step_in_nearest_rows(obs, input.points, c.nearest_row, !input.planar_scan, c.lookahead);
   return obs;
 }
 

@@ -84,6 +84,21 @@ core::RowLine side_line(double heading, double signed_dist, const ConeRectConfig
   return r;
 }
 
+// Issue 11: the rectangles see only x in [rect_x_min, rect_x_max]; where the near row has fewer
+// than N returns there (a 2D scan through a sparse canopy) they grow on to the row behind. A row
+// band between the robot and a hit, over the whole visible row, sets that side at the band's
+// inner edge (its N-th nearest return, as the rectangle would have stopped; nearest_row.hpp).
+void step_in(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c, double heading,
+             Sides& d) {
+  if (!d.left || !d.right) return;
+  core::RowObservation sides;
+  sides.rows = {side_line(heading, -*d.right, c), side_line(heading, *d.left, c)};
+  sides.right = 0, sides.left = 1;
+  const auto bands = find_nearer_rows(sides, pts, heading, c.nearest_row, c.rect_points);
+  if (bands[0]) d.left = bands[0]->inner;
+  if (bands[1]) d.right = -bands[1]->inner;
+}
+
 }  // namespace
 
 void ConeRectConfig::validate() const {
@@ -95,6 +110,7 @@ void ConeRectConfig::validate() const {
   core::check(rect_points >= 1, "rect_points", "must be >= 1");
   core::check_positive(max_rect_width, "max_rect_width");
   core::check_non_negative(min_width, "min_width");
+  core::validate_nested(nearest_row, "nearest_row");
 }
 
 ConeRectDetector::ConeRectDetector(const ConeRectConfig& config) : config_(config) {
@@ -113,6 +129,8 @@ core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
     heading = corrected_heading(0.5 * (*cone.left + *cone.right), d, c);
     if (c.align_rectangles) d = grow_rectangles(input.points, c, heading, buf_);
   }
+  if (c.nearest_row.enabled && (input.planar_scan || c.nearest_row.on_clouds))
+    step_in(input.points, c, heading, d);
   if (d.left && d.right && *d.left + *d.right < c.min_width) d = {};  // clutter, not a corridor
   if (d.right) obs.rows.push_back(side_line(heading, -*d.right, c));
   if (d.left) obs.rows.push_back(side_line(heading, *d.left, c));

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "rownav/detect/line_fit.hpp"
+#include "rownav/detect/nearest_row.hpp"
 
 namespace rownav::detect {
 
@@ -54,6 +55,7 @@ void HoughSkewConfig::validate() const {
   core::check_non_negative(min_row_length, "min_row_length");
   core::check_positive(max_row_rms, "max_row_rms");
   core::validate_nested(trunk_offset, "trunk_offset");
+  core::validate_nested(nearest_row, "nearest_row");
 }
 
 HoughSkewDetector::HoughSkewDetector(const HoughSkewConfig& config)
@@ -137,6 +139,8 @@ core::RowObservation HoughSkewDetector::detect(const DetectorInput& input) {
   if (segments_.empty()) return obs;
   fit_rows(gamma, input.cloud, obs);
   finalize_observation(obs);
+  // Issue 11: a near row the segmentation dropped (weaker than the row behind it; nearest_row.hpp).
+  step_in_nearest_rows(obs, input.points, config_.nearest_row, !input.planar_scan);
   return obs;
 }
 

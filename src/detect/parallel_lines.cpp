@@ -98,6 +98,7 @@ void ParallelLinesConfig::validate() const {
   core::check_positive(trunk_max_line_distance, "trunk_max_line_distance");
   core::check_positive(trunk_max_range, "trunk_max_range");
   core::validate_nested(trunk_offset, "trunk_offset");
+  core::validate_nested(nearest_row, "nearest_row");
 }
 
 ParallelLinesDetector::ParallelLinesDetector(const ParallelLinesConfig& config)
@@ -251,6 +252,9 @@ core::RowObservation ParallelLinesDetector::detect(const DetectorInput& input) {
     for (auto& r : obs.rows) offsets_.apply(r);
   obs.heading = std::atan(m.a);
   finalize_observation(obs);
+  // Issue 11: the pair may have skipped the near row of a 2D scan (nearest_row.hpp); the two
+  // reported rows stay the corridor pair.
+  step_in_nearest_rows(obs, pts_, config_.nearest_row, !input.planar_scan, 0.0, true);
   if (config_.detect_trunks && input.cloud != nullptr) find_trunks(*input.cloud, m, has_l, has_r);
   return obs;
 }

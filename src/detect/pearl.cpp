@@ -13,6 +13,7 @@ namespace rownav::detect {
 using namespace pearl_detail;
 
 void PearlConfig::validate() const {
+  core::validate_nested(nearest_row, "nearest_row");
   core::check_positive(outlier_cost, "outlier_cost");
   core::check_non_negative(outlier_penalty, "outlier_penalty");
   core::check_non_negative(smoothness, "smoothness");
@@ -169,7 +170,10 @@ core::RowObservation PearlDetector::detect(const DetectorInput& input) {
   }
   last_energy_ = std::isfinite(best_energy) ? best_energy : 0.0;
   finish_models(cfg, st.pts, outlier_cost, best_labels, best_models);
-  return make_observation(cfg, st.pts, input.stamp, best_labels, best_models);
+  auto obs = make_observation(cfg, st.pts, input.stamp, best_labels, best_models);
+  // Issue 11: a sparse near row pays its label cost poorly (nearest_row.hpp).
+  step_in_nearest_rows(obs, st.pts, cfg.nearest_row, !input.planar_scan, cfg.lookahead);
+  return obs;
 }
 
 }  // namespace rownav::detect

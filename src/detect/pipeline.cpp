@@ -58,7 +58,7 @@ core::RowObservation DetectionPipeline::transform_and_detect(const core::PointCl
     cloud_base_.points[i] = q;
   }
   preprocessor_.run(cloud_base_);
-  return detect(cloud_lidar.stamp);
+  return detect(cloud_lidar.stamp, false);
 }
 
 core::RowObservation DetectionPipeline::process(const core::Scan2D& scan_lidar) {
@@ -74,7 +74,7 @@ core::RowObservation DetectionPipeline::process(const core::Scan2D& scan_lidar) 
                                                r * static_cast<float>(std::sin(a))));
   }
   preprocessor_.run(std::span<const Eigen::Vector2f>(points_base_));
-  return detect(scan_lidar.stamp);
+  return detect(scan_lidar.stamp, true);
 }
 
 core::RowObservation DetectionPipeline::process_points(std::span<const Eigen::Vector2f> points_base,
@@ -82,12 +82,13 @@ core::RowObservation DetectionPipeline::process_points(std::span<const Eigen::Ve
   cloud_base_.points.clear();
   cloud_base_.stamp = stamp;
   preprocessor_.run(points_base);
-  return detect(stamp);
+  return detect(stamp, true);
 }
 
-core::RowObservation DetectionPipeline::detect(double stamp) {
+core::RowObservation DetectionPipeline::detect(double stamp, bool planar) {
   try {
-    const DetectorInput input = preprocessor_.input(stamp);
+    DetectorInput input = preprocessor_.input(stamp);
+    input.planar_scan = planar && input.cloud == nullptr;
     last_points_ = input.points;
     core::RowObservation obs = detector_->detect(input);
     // Centre lines under the crowns, canopy half widths (issue 10); 2D input: no heights.

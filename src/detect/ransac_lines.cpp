@@ -16,6 +16,7 @@ void RansacLinesConfig::validate() const {
   core::check_positive(max_lines, "max_lines");
   core::check_non_negative(sample_min, "sample_min");
   core::check_range(max_row_heading_deg, 0.0, 90.0, "max_row_heading_deg");
+  core::validate_nested(nearest_row, "nearest_row");
 }
 
 namespace {
@@ -90,6 +91,8 @@ core::RowObservation RansacLinesDetector::detect(const DetectorInput& input) {
     obs.rows.push_back(row);
   }
   finalize_observation(obs, cfg.lookahead);
+  // Issue 11: sequential RANSAC takes the best supported lines first (nearest_row.hpp).
+  step_in_nearest_rows(obs, input.points, cfg.nearest_row, !input.planar_scan, cfg.lookahead);
   return obs;
 }
 

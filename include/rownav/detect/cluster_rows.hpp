@@ -8,6 +8,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/detect/dbscan.hpp"
+#include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
 
 namespace rownav::detect {
@@ -43,6 +44,8 @@ struct ClusterRowsConfig {
   double max_row_angle_deg = 50.0;
   /// [m] x at which rows are sorted and the corridor rows picked (finalize_observation).
   double lookahead = 0.0;
+  /// 2D scans: a row band between the robot and a corridor row becomes that side's row (issue 11)
+  NearestRowConfig nearest_row;
 
   /// Row crops (maize, corn; rows 0.5-0.9 m apart, narrow plants): smaller eps so that the
   /// ~0.3-0.4 m between rows separates them; shorter seeds. Used for corn_rows_2d.
@@ -64,6 +67,7 @@ struct ClusterRowsConfig {
     v("max_row_roundness", s.max_row_roundness);
     v("max_row_angle_deg", s.max_row_angle_deg);
     v("lookahead", s.lookahead);
+    v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

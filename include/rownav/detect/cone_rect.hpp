@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
 
 namespace rownav::detect {
@@ -37,6 +38,12 @@ struct ConeRectConfig {
   /// row distances d_l, d_r, each side stops near asin(d / L) from the row direction, so the
   /// centre line is biased by (asin(d_l / L) - asin(d_r / L)) / 2 (ours, from the geometry).
   bool compensate_offset = true;
+  /// 2D scans: a row band between the robot and a rectangle's hit, over the whole visible row
+  /// (not only the rectangle's x window), sets that side (issue 11). Off by default: the bands
+  /// are searched along the cone's heading, which is off by several degrees at +-10 deg of yaw
+  /// (the cone's capture range, see side_length), and on the issue-11 frames it made the gross
+  /// error rate worse (8.4 % -> 10.0 %, BENCHMARK.md "Issue 11").
+  NearestRowConfig nearest_row{.enabled = false};
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -50,6 +57,7 @@ struct ConeRectConfig {
     v("min_width", s.min_width);
     v("align_rectangles", s.align_rectangles);
     v("compensate_offset", s.compensate_offset);
+    v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
 #include "rownav/detect/trunk_offset.hpp"
 
@@ -63,6 +64,8 @@ struct HoughSkewConfig {
   /// rownav: row offsets re-estimated from the trunk band behind the canopy faces (3D cloud only;
   /// the canopy fit alone puts vineyard rows up to a canopy half width too close to the robot)
   TrunkOffsetConfig trunk_offset;
+  /// 2D scans: a row band between the robot and a corridor row becomes that side's row (issue 11)
+  NearestRowConfig nearest_row;
 
   /// Row crop preset (maize, corn; rows 0.7-0.8 m apart, 2D scanner): chosen for the crop type,
   /// not for one data set. Validated on corn_rows_2d (see tests/detect/hough_skew_test.cpp).
@@ -76,6 +79,7 @@ struct HoughSkewConfig {
     c.band_half_width = 0.2;
     c.min_row_length = 0.3;
     c.trunk_offset.enabled = false;  // no trunk band: maize stems and leaves mix at every height
+    c.nearest_row.enabled = false;   // leaves cross the corridors: corn_rows_2d got worse (issue 11)
     return c;
   }
 
@@ -108,6 +112,7 @@ struct HoughSkewConfig {
     v("min_row_length", s.min_row_length);
     v("max_row_rms", s.max_row_rms);
     v("trunk_offset", s.trunk_offset);
+    v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
 #include "rownav/detect/trunk_offset.hpp"
 
@@ -51,6 +52,8 @@ struct ParallelLinesConfig {
   double trunk_max_range = 5.0;         ///< [m] trunks farther from the robot are ignored
   /// Row offsets re-estimated from the trunk band behind the fitted canopy faces (3D cloud only)
   TrunkOffsetConfig trunk_offset;
+  /// 2D scans: a row band between the robot and a fitted line replaces it (issue 11)
+  NearestRowConfig nearest_row;
 
   /// Defaults: vineyards / orchards (rows 1.5-3 m apart). Row crop preset (maize, corn; rows
   /// 0.7-0.8 m apart, 2D scanner): chosen for the crop type, not for one data set; validated on
@@ -64,6 +67,7 @@ struct ParallelLinesConfig {
     c.min_row_length = 0.3;
     c.min_contrast = 1.2;  // leaves reach into narrow corridors: less empty space between rows
     c.trunk_offset.enabled = false;  // no trunk band: maize stems and leaves mix at every height
+    c.nearest_row.enabled = false;   // leaves cross the corridors: corn_rows_2d got worse (issue 11)
     return c;
   }
 
@@ -92,6 +96,7 @@ struct ParallelLinesConfig {
     v("trunk_max_line_distance", s.trunk_max_line_distance);
     v("trunk_max_range", s.trunk_max_range);
     v("trunk_offset", s.trunk_offset);
+    v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

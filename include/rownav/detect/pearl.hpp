@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
 
 namespace rownav::detect {
@@ -93,6 +94,8 @@ struct PearlConfig {
   double max_row_heading_deg = 60.0;
   /// [m] x at which the corridor rows are picked (finalize_observation).
   double lookahead = 0.5;
+  /// 2D scans: a row band between the robot and a corridor row becomes that side's row (issue 11)
+  NearestRowConfig nearest_row;
   std::uint64_t seed = 1;  ///< random sampling seed: same seed, same result
 
   template <class S, class V>
@@ -122,6 +125,7 @@ struct PearlConfig {
     v("max_row_heading_deg", s.max_row_heading_deg);
     v("lookahead", s.lookahead);
     v("seed", s.seed);
+    v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

@@ -51,7 +51,7 @@ class DetectionPipeline {
   const preprocess::GroundEstimator& last_ground() const { return preprocessor_.ground(); }
 
  private:
-  core::RowObservation detect(double stamp);
+  core::RowObservation detect(double stamp, bool planar);
   core::RowObservation transform_and_detect(const core::PointCloud& cloud_lidar,
                                             const Eigen::Isometry3d& T_base_lidar);
 

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
 
 namespace rownav::detect {
@@ -23,6 +24,8 @@ struct RansacLinesConfig {
   /// are still removed); 90 disables the check (rownav).
   double max_row_heading_deg = 60.0;
   double lookahead = 0.5;  ///< [m] x at which the corridor rows are picked (finalize_observation)
+  /// 2D scans: a row band between the robot and a corridor row becomes that side's row (issue 11)
+  NearestRowConfig nearest_row;
   std::uint64_t seed = 1;  ///< same seed, same result
 
   template <class S, class V>
@@ -35,6 +38,7 @@ struct RansacLinesConfig {
     v("max_row_heading_deg", s.max_row_heading_deg);
     v("lookahead", s.lookahead);
     v("seed", s.seed);
+    v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
