@@ -1,9 +1,10 @@
 // Picture speed (issue 14): draw and write the demo's top view (config/fields/demo_vineyard.yaml,
-// 12 px/m, legend, a serpentine path over every corridor, row-end dots) as PNG and as SVG, so a
+// 12 px/m, legend, a serpentine path over every corridor, row-end dots) as PNG, SVG, PDF, so a
 // change of backend can be compared on the same drawing. Uses only make_canvas and the top-view
 // API: the same source measures any backend.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "rownav/io/canvas.hpp"
@@ -73,8 +74,12 @@ void BM_DemoTopViewPng(benchmark::State& state) {
 void BM_DemoTopViewSvg(benchmark::State& state) {
   draw_and_write(state, "rownav_render_bench.svg");
 }
+void BM_DemoTopViewPdf(benchmark::State& state) {
+  draw_and_write(state, "rownav_render_bench.pdf");
+}
 BENCHMARK(BM_DemoTopViewPng)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DemoTopViewSvg)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DemoTopViewPdf)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -220,9 +220,9 @@ TEST(CliErrors, BadInputGivesOneLineAndNoOutput) {
   }
 }
 
-TEST_F(Cli, RenderWritesPngAndSvgLiveAndFromTheRecording) {
+TEST_F(Cli, RenderWritesPngSvgAndPdfLiveAndFromTheRecording) {
   ASSERT_EQ(sim_->code, 0) << sim_->err;
-  for (const char* ext : {"png", "svg"}) {
+  for (const char* ext : {"png", "svg", "pdf"}) {
     SCOPED_TRACE(ext);
     const std::string live = std::string("live.") + ext, recorded = std::string("recorded.") + ext;
     const Result a = rownav(dir_->path(), "render --field field.yaml --corridor 1 --out " + live);
@@ -236,6 +236,8 @@ TEST_F(Cli, RenderWritesPngAndSvgLiveAndFromTheRecording) {
       EXPECT_GT(fs::file_size(*dir_ / f), 1000u) << f;
       if (std::string(ext) == "png") {
         EXPECT_TRUE(has_png_signature(*dir_ / f)) << f;
+      } else if (std::string(ext) == "pdf") {
+        EXPECT_EQ(read_file(*dir_ / f).rfind("%PDF-", 0), 0u) << f;
       } else {
         const std::string svg = read_file(*dir_ / f);
         EXPECT_NE(svg.find("<svg"), std::string::npos) << f;
