@@ -248,7 +248,7 @@ void add_detect_command(CLI::App& app) {
       ->check(CLI::ExistingPath);
   c->add_option("--out", a->out, "JSON-lines output file")->required();
   c->add_flag("--overwrite", a->overwrite, "replace existing --out / --svg files");
-  c->add_option("--svg", a->svg, "picture (.svg or .png) of one frame: points and detected rows");
+  c->add_option("--svg", a->svg, "picture (.svg, .png or .pdf) of one frame: points and detected rows");
   c->add_option("--svg-frame", a->svg_frame, "0-based frame drawn by --svg (default 0)");
   c->add_option("--lidar-mount", a->mount,
                 "T_base_lidar as x,y,z,roll_deg,pitch_deg,yaw_deg (metres, degrees; rotation "

@@ -220,7 +220,7 @@ void add_track_command(CLI::App& app) {
   c->add_option("--tracker", a->tracker, "row tracker: " + trackers)->required();
   c->add_option("--out", a->out, "CSV output file")->required();
   c->add_flag("--overwrite", a->overwrite, "replace existing --out / --svg files");
-  c->add_option("--svg", a->svg, "plot (.svg or .png) of the deviations over time");
+  c->add_option("--svg", a->svg, "plot (.svg, .png or .pdf) of the deviations over time");
   c->add_option("--detect-config", a->detect_config,
                 "detection config YAML, e.g. config/detect/vineyard.yaml (default: built-in)")
       ->check(CLI::ExistingFile);
