@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/io/canvas.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "picture.hpp"
 #include "rownav/core/angle.hpp"
@@ -88,6 +89,7 @@ void render_recorded(const RenderArgs& a, PictureContent& pic) {
 }
 
 void run_render(const RenderArgs& a) {
+  io::picture_format(a.out);  // an unknown extension names the user's file, before the work
   io::OutputFile out(a.out, a.overwrite);  // refused names are said before the work
   sim::FieldConfig field_config;
   const sim::Field field = load_field(a.field, &field_config);

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "rownav/io/canvas.hpp"
 #include "rownav/io/recording_replay.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "rownav/navigate/nav_stack.hpp"
@@ -155,6 +156,7 @@ void run(const TrackArgs& a) {
   navigate::NavStack stack(config, std::move(parts));
   std::cout << "odometry: " << (truth ? source : "Localizer, " + source) << "\n";
   // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
+  if (!a.svg.empty()) io::picture_format(a.svg);  // names the user's file, not the staging one
   io::OutputFile partial(a.out, a.overwrite);
   std::optional<io::OutputFile> picture;
   if (!a.svg.empty()) picture.emplace(a.svg, a.overwrite);

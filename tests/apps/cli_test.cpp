@@ -250,6 +250,11 @@ TEST_F(Cli, RenderWritesPngSvgAndPdfLiveAndFromTheRecording) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(bad.err, "rownav: error: --corridor 7 does not exist\n");
   EXPECT_FALSE(fs::exists(*dir_ / "bad.png"));
+  // An unknown picture format names the user's file (not the staging one), before the work.
+  const Result bmp = rownav(dir_->path(), "render --field field.yaml --corridor 1 --out v.bmp");
+  EXPECT_EQ(bmp.code, 2);
+  EXPECT_EQ(bmp.err.rfind("rownav: error: v.bmp: unknown picture format '.bmp'", 0), 0u) << bmp.err;
+  EXPECT_FALSE(fs::exists(*dir_ / "v.bmp"));
 }
 
 TEST(CliConfig, DumpedDefaultsAreAcceptedBack) {
