@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/io/canvas.hpp"
 #include "rownav/io/recording_replay.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "rownav/navigate/nav_stack.hpp"
@@ -165,6 +166,7 @@ void run_recording(const DetectArgs& a, const Emit& emit) {
 
 void run(const DetectArgs& a) {
   // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
+  if (!a.svg.empty()) io::picture_format(a.svg);  // names the user's file, not the staging one
   io::OutputFile partial(a.out, a.overwrite);
   std::optional<io::OutputFile> picture;
   if (!a.svg.empty()) picture.emplace(a.svg, a.overwrite);
@@ -248,7 +250,8 @@ void add_detect_command(CLI::App& app) {
       ->check(CLI::ExistingPath);
   c->add_option("--out", a->out, "JSON-lines output file")->required();
   c->add_flag("--overwrite", a->overwrite, "replace existing --out / --svg files");
-  c->add_option("--svg", a->svg, "picture (.svg or .png) of one frame: points and detected rows");
+  c->add_option("--svg", a->svg,
+                 "picture (.svg, .png or .pdf) of one frame: points and detected rows");
   c->add_option("--svg-frame", a->svg_frame, "0-based frame drawn by --svg (default 0)");
   c->add_option("--lidar-mount", a->mount,
                 "T_base_lidar as x,y,z,roll_deg,pitch_deg,yaw_deg (metres, degrees; rotation "

@@ -11,7 +11,7 @@ namespace rownav::app {
 
 /// Robot view of one frame, base frame with x forward drawn up and y left drawn left: the points
 /// given to the detector, every detected row over its support, the left / right rows and the
-/// corridor centre highlighted, the robot at the origin. SVG or PNG by extension.
+/// corridor centre highlighted, the robot at the origin. PNG, SVG or PDF by extension.
 void write_detection_picture(const std::filesystem::path& out,
                              const std::vector<Eigen::Vector2f>& points_base,
                              const core::RowObservation& obs, const std::string& title);

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/io/canvas.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "picture.hpp"
 #include "rownav/core/angle.hpp"
@@ -88,6 +89,7 @@ void render_recorded(const RenderArgs& a, PictureContent& pic) {
 }
 
 void run_render(const RenderArgs& a) {
+  io::picture_format(a.out);  // an unknown extension names the user's file, before the work
   io::OutputFile out(a.out, a.overwrite);  // refused names are said before the work
   sim::FieldConfig field_config;
   const sim::Field field = load_field(a.field, &field_config);
@@ -111,7 +113,7 @@ void add_render_command(CLI::App& app) {
       "render", "Draw a top view (PNG or SVG) of a field with its ground truth (rows, corridor "
                 "centres, posts, plants) and one LiDAR frame overlaid, coloured by height");
   c->add_option("--field", a->field, "field YAML")->required()->check(CLI::ExistingFile);
-  c->add_option("--out", a->out, "picture to write (.png or .svg)")->required();
+  c->add_option("--out", a->out, "picture to write (.png, .svg or .pdf)")->required();
   c->add_flag("--overwrite", a->overwrite, "replace an existing --out file");
   c->add_option("--recording", a->recording, "take the frame from this recording (rownav sim --out)")->check(CLI::ExistingDirectory);
   c->add_option("--frame", a->frame, "frame index in the recording (default: the middle one)");

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "rownav/io/canvas.hpp"
 #include "rownav/io/recording_replay.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "rownav/navigate/nav_stack.hpp"
@@ -155,6 +156,7 @@ void run(const TrackArgs& a) {
   navigate::NavStack stack(config, std::move(parts));
   std::cout << "odometry: " << (truth ? source : "Localizer, " + source) << "\n";
   // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
+  if (!a.svg.empty()) io::picture_format(a.svg);  // names the user's file, not the staging one
   io::OutputFile partial(a.out, a.overwrite);
   std::optional<io::OutputFile> picture;
   if (!a.svg.empty()) picture.emplace(a.svg, a.overwrite);
@@ -220,7 +222,7 @@ void add_track_command(CLI::App& app) {
   c->add_option("--tracker", a->tracker, "row tracker: " + trackers)->required();
   c->add_option("--out", a->out, "CSV output file")->required();
   c->add_flag("--overwrite", a->overwrite, "replace existing --out / --svg files");
-  c->add_option("--svg", a->svg, "plot (.svg or .png) of the deviations over time");
+  c->add_option("--svg", a->svg, "plot (.svg, .png or .pdf) of the deviations over time");
   c->add_option("--detect-config", a->detect_config,
                 "detection config YAML, e.g. config/detect/vineyard.yaml (default: built-in)")
       ->check(CLI::ExistingFile);

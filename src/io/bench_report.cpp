@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 #include "rownav/io/plot.hpp"
-#include "rownav/io/svg_canvas.hpp"
 
 namespace rownav::io {
 
@@ -54,7 +53,8 @@ void write_bar_plot(const fs::path& file, const ResultTable& t) {
   hi = hi > 0 ? hi * 1.1 : 1.0;
   const int left = 260, top = 40, bar_h = 22, width = 760;
   const int height = top + 30 + bar_h * static_cast<int>(bars.size()) + 20;
-  SvgCanvas c;
+  const auto canvas = make_canvas(file);
+  Canvas& c = *canvas;
   const Eigen::AlignedBox2d plot(Eigen::Vector2d(left, top),
                                  Eigen::Vector2d(width - 40, height - 30));
   c.set_view_rect(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(hi, 1)), plot, width,

@@ -6,9 +6,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "rownav/io/cairo_canvas.hpp"
 #include "rownav/io/input_error.hpp"
-#include "rownav/io/png_canvas.hpp"
-#include "rownav/io/svg_canvas.hpp"
 
 namespace rownav::io {
 
@@ -138,13 +137,20 @@ void Canvas::rect_px(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const S
 void Canvas::begin_group(const std::string&, const Eigen::AlignedBox2d*) {}
 void Canvas::end_group() {}
 
-std::unique_ptr<Canvas> make_canvas(const std::filesystem::path& out) {
+PictureFormat picture_format(const std::filesystem::path& out) {
   std::string ext = out.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".svg") return std::make_unique<SvgCanvas>();
-  if (ext == ".png") return std::make_unique<PngCanvas>();
-  throw InputError(out.string(), "", "unknown picture format '" + ext + "' (want .svg or .png)");
+  if (ext == ".png") return PictureFormat::png;
+  if (ext == ".svg") return PictureFormat::svg;
+  if (ext == ".pdf") return PictureFormat::pdf;
+  throw InputError(out.string(), "",
+                   "unknown picture format '" + ext + "' (want .png, .svg or .pdf)");
+}
+
+std::unique_ptr<Canvas> make_canvas(const std::filesystem::path& out) {
+  picture_format(out);  // reject an unknown extension before anything is drawn
+  return std::make_unique<CairoCanvas>();
 }
 
 }  // namespace rownav::io

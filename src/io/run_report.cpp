@@ -9,9 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rownav/io/cairo_canvas.hpp"
 #include "rownav/io/plot.hpp"
-#include "rownav/io/png_canvas.hpp"
-#include "rownav/io/svg_canvas.hpp"
 #include "rownav/io/top_view.hpp"
 
 namespace rownav::io {
@@ -207,19 +206,17 @@ void write_run_report(const fs::path& partial, const RunResult& run, const RunSu
   if (ec) throw std::runtime_error(partial.string() + ": cannot create: " + ec.message());
   const std::string js = summary_json(summary, names);
   write_text(partial / "summary.json", js + "\n");
-  // The same drawings as SVG (inlined in report.html) and as PNG (for slides and READMEs).
-  SvgCanvas top, lateral, speed;
+  // One drawing a picture, written as SVG (inlined in report.html) and PNG (slides, READMEs).
+  CairoCanvas top, lateral, speed;
   draw_top_view(top, run, field);
   draw_plots(lateral, speed, run);
-  write_text(partial / "top_view.svg", top.document());
-  write_text(partial / "report.html", html(run, json::parse(js), top.document(),
-                                          {lateral.document(), speed.document()}));
-  PngCanvas top_png, lateral_png, speed_png;
-  draw_top_view(top_png, run, field);
-  draw_plots(lateral_png, speed_png, run);
-  top_png.save(partial / "top_view.png");
-  lateral_png.save(partial / "lateral_error.png");
-  speed_png.save(partial / "speed.png");
+  top.save(partial / "top_view.svg");
+  write_text(partial / "report.html",
+             html(run, json::parse(js), top.svg_inline("top-"),
+                  {lateral.svg_inline("lateral-"), speed.svg_inline("speed-")}));
+  top.save(partial / "top_view.png");
+  lateral.save(partial / "lateral_error.png");
+  speed.save(partial / "speed.png");
   write_text(partial / "trajectory.csv", trajectory_csv(run));
 }
 

@@ -220,9 +220,9 @@ TEST(CliErrors, BadInputGivesOneLineAndNoOutput) {
   }
 }
 
-TEST_F(Cli, RenderWritesPngAndSvgLiveAndFromTheRecording) {
+TEST_F(Cli, RenderWritesPngSvgAndPdfLiveAndFromTheRecording) {
   ASSERT_EQ(sim_->code, 0) << sim_->err;
-  for (const char* ext : {"png", "svg"}) {
+  for (const char* ext : {"png", "svg", "pdf"}) {
     SCOPED_TRACE(ext);
     const std::string live = std::string("live.") + ext, recorded = std::string("recorded.") + ext;
     const Result a = rownav(dir_->path(), "render --field field.yaml --corridor 1 --out " + live);
@@ -236,6 +236,8 @@ TEST_F(Cli, RenderWritesPngAndSvgLiveAndFromTheRecording) {
       EXPECT_GT(fs::file_size(*dir_ / f), 1000u) << f;
       if (std::string(ext) == "png") {
         EXPECT_TRUE(has_png_signature(*dir_ / f)) << f;
+      } else if (std::string(ext) == "pdf") {
+        EXPECT_EQ(read_file(*dir_ / f).rfind("%PDF-", 0), 0u) << f;
       } else {
         const std::string svg = read_file(*dir_ / f);
         EXPECT_NE(svg.find("<svg"), std::string::npos) << f;
@@ -248,6 +250,11 @@ TEST_F(Cli, RenderWritesPngAndSvgLiveAndFromTheRecording) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(bad.err, "rownav: error: --corridor 7 does not exist\n");
   EXPECT_FALSE(fs::exists(*dir_ / "bad.png"));
+  // An unknown picture format names the user's file (not the staging one), before the work.
+  const Result bmp = rownav(dir_->path(), "render --field field.yaml --corridor 1 --out v.bmp");
+  EXPECT_EQ(bmp.code, 2);
+  EXPECT_EQ(bmp.err.rfind("rownav: error: v.bmp: unknown picture format '.bmp'", 0), 0u) << bmp.err;
+  EXPECT_FALSE(fs::exists(*dir_ / "v.bmp"));
 }
 
 TEST(CliConfig, DumpedDefaultsAreAcceptedBack) {

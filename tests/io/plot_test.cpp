@@ -5,9 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "rownav/io/cairo_canvas.hpp"
 #include "rownav/io/input_error.hpp"
-#include "rownav/io/png_canvas.hpp"
-#include "rownav/io/svg_canvas.hpp"
 
 namespace rownav::io {
 namespace {
@@ -35,18 +34,30 @@ Series wave(const std::string& label, Color c, double phase) {
   return s;
 }
 
+bool is_red(Color c) {
+  return c.r > 180 && c.g < 120 && c.b < 120;
+}
+
 TEST(Plot, NanBreaksTheLine) {
   Series s = wave("lateral error", Color::hex("#d62728"), 0.0);
   s.y[50] = std::nan("");
   s.y[120] = std::nan("");
-  SvgCanvas c;
+  CairoCanvas c;
   draw_plot(c, {s}, PlotOptions{});
-  const std::string doc = c.document();
-  std::size_t n = 0;
-  for (auto p = doc.find("stroke=\"#d62728\""); p != std::string::npos;
-       p = doc.find("stroke=\"#d62728\"", p + 1))
-    ++n;
-  EXPECT_EQ(n, 3u + 1u);  // three runs + the legend sample
+  const RgbaImage img = c.raster();
+  const Eigen::AlignedBox2d plot = c.plot_rect();
+  const auto red_in_column = [&](double x) {
+    const int px = static_cast<int>(c.to_pixel({x, 0}).x());
+    int red = 0;
+    for (int y = static_cast<int>(plot.min().y()); y < static_cast<int>(plot.max().y()); ++y)
+      red += is_red(img.at(px, y));
+    return red;
+  };
+  EXPECT_EQ(red_in_column(25.0), 0);  // between points 49 and 51
+  EXPECT_EQ(red_in_column(60.0), 0);  // between 119 and 121
+  EXPECT_GT(red_in_column(24.0), 0);  // the line runs on either side
+  EXPECT_GT(red_in_column(26.0), 0);
+  EXPECT_GT(red_in_column(61.0), 0);
 }
 
 TEST(Plot, WritesPngAndSvgOfTheRequestedSize) {
@@ -59,13 +70,13 @@ TEST(Plot, WritesPngAndSvgOfTheRequestedSize) {
   o.x_label = "time [s]";
   o.y_label = "error";
   o.bands = {{30, 45}, {80, 90}};
-  for (const char* name : {"rownav_plot.png", "rownav_plot.svg"})
+  for (const char* name : {"rownav_plot.png", "rownav_plot.svg", "rownav_plot.pdf"})
     write_plot(fs::temp_directory_path() / name, {a, b}, o);
   const RgbaImage img = read_png(fs::temp_directory_path() / "rownav_plot.png");
   EXPECT_EQ(img.width, 900);
   EXPECT_EQ(img.height, 350);
   // The zero crossing of series a at x = 0 sits at the vertical middle of the data range.
-  PngCanvas c;
+  CairoCanvas c;
   draw_plot(c, {a, b}, o);
   const Eigen::Vector2d p = c.to_pixel({20.0, 0.1 * std::sin(40 * 0.05)});
   int red = 0;
@@ -75,17 +86,18 @@ TEST(Plot, WritesPngAndSvgOfTheRequestedSize) {
   }
   EXPECT_GT(red, 0);
   EXPECT_GT(fs::file_size(fs::temp_directory_path() / "rownav_plot.svg"), 2000u);
+  EXPECT_GT(fs::file_size(fs::temp_directory_path() / "rownav_plot.pdf"), 2000u);
   EXPECT_THROW(write_plot(fs::temp_directory_path() / "p.jpg", {a}, o), InputError);
 }
 
 TEST(Plot, YRangeIsHonouredAndEmptyPlotDraws) {
   PlotOptions o;
   o.y_range = std::make_pair(-0.5, 0.5);
-  SvgCanvas c;
+  CairoCanvas c;
   draw_plot(c, {wave("a", Color::hex("#000000"), 0.0)}, o);
   EXPECT_NEAR(c.world_box().min().y(), -0.5, 1e-12);
   EXPECT_NEAR(c.world_box().max().y(), 0.5, 1e-12);
-  SvgCanvas empty;
+  CairoCanvas empty;
   EXPECT_NO_THROW(draw_plot(empty, {}, PlotOptions{}));
   EXPECT_EQ(empty.width(), 900);
 }

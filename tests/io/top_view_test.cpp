@@ -7,8 +7,7 @@
 #include <random>
 
 #include "rownav/core/line2.hpp"
-#include "rownav/io/png_canvas.hpp"
-#include "rownav/io/svg_canvas.hpp"
+#include "rownav/io/cairo_canvas.hpp"
 
 namespace rownav::io {
 namespace {
@@ -135,26 +134,31 @@ TEST(TopView, ThreeRowFieldBothFormats) {
   EXPECT_TRUE(corridor.b > corridor.r || corridor == Color::hex("#efe6d2"));
 }
 
-TEST(TopView, SvgHasLayersAndOneCirclePerPlant) {
+TEST(TopView, EveryPlantIsDrawnInItsColour) {
   const sim::Field f = make_field(3, 20.0, 2.5, 0.0, 1);
-  SvgCanvas c;
+  CairoCanvas c;
   TopViewOptions o;
   o.posts = false;
   draw_field(c, f, o);
-  const std::string doc = c.document();
-  for (const char* g : {"id=\"field\"", "id=\"canopy\"", "id=\"corridor_centres\"", "id=\"legend\"",
-                        "id=\"scale_bar\"", "id=\"axes\""})
-    EXPECT_NE(doc.find(g), std::string::npos) << g;
-  const auto posts = std::count_if(f.plants.begin(), f.plants.end(), [](const sim::Plant& p) {
-    return p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post;
-  });
-  const auto field_part =
-      doc.substr(doc.find("id=\"plants\""), doc.find("id=\"legend\"") - doc.find("id=\"plants\""));
-  std::size_t circles = 0;
-  for (auto p = field_part.find("<circle"); p != std::string::npos;
-       p = field_part.find("<circle", p + 1))
-    ++circles;
-  EXPECT_EQ(circles, f.plants.size() - static_cast<std::size_t>(posts));
+  const RgbaImage img = c.raster();
+  const auto near = [](Color a, Color b) {
+    return std::abs(a.r - b.r) <= 3 && std::abs(a.g - b.g) <= 3 && std::abs(a.b - b.b) <= 3;
+  };
+  // Dots of >= 1.5 px radius cover the pixel holding their centre entirely.
+  std::size_t vines = 0, vines_seen = 0, weeds = 0, weeds_seen = 0;
+  for (const auto& p : f.plants) {
+    const Eigen::Vector2d q = c.to_pixel(p.position);
+    const Color px = img.at(static_cast<int>(q.x()), static_cast<int>(q.y()));
+    if (p.kind == sim::PlantKind::vine) ++vines, vines_seen += near(px, Color::hex("#2f7d32"));
+    if (p.kind == sim::PlantKind::weed) ++weeds, weeds_seen += near(px, Color::hex("#a9d65c"));
+  }
+  EXPECT_GT(vines, 40u);
+  EXPECT_GE(vines_seen, vines * 9 / 10);  // a weed drawn later may cover a vine
+  EXPECT_EQ(weeds_seen, weeds);
+  const std::string svg = c.svg();  // the same drawing as vectors
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_GT(std::count(svg.begin(), svg.end(), '\n'), static_cast<long>(vines + weeds));
 }
 
 TEST(TopView, DemoVineyardWithScanCloudAndRobot) {
@@ -190,6 +194,7 @@ TEST(TopView, DemoVineyardWithScanCloudAndRobot) {
   o.pixels_per_metre = 50;
   render(fs::temp_directory_path() / "render_demo_zoom.svg");
   render(fs::temp_directory_path() / "render_demo_zoom.png");
+  render(fs::temp_directory_path() / "render_demo_zoom.pdf");
   const RgbaImage img = read_png(out);
   EXPECT_EQ(img.width, c->width());
   EXPECT_GT(std::count_if(scan.ranges.begin(), scan.ranges.end(),

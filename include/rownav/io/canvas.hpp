@@ -1,6 +1,6 @@
 #pragma once
-/// @file canvas.hpp An abstract drawing surface in world metres (x right, y up on screen), with an
-/// SVG and a PNG backend. World-space calls go through one view transform; pixel-space calls
+/// @file canvas.hpp An abstract drawing surface in world metres (x right, y up on screen); its
+/// backend is cairo (cairo_canvas.hpp: PNG, SVG and PDF from one drawing). World-space calls go through one view transform; pixel-space calls
 /// (titles, legends, colour bars) bypass it. Pixel origin: top-left, y down.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -91,7 +91,8 @@ class Canvas {
   /// [px] width the text will take (for layout).
   virtual double text_width(const std::string& text, double size_px) const = 0;
 
-  /// Opens a named group (SVG <g>); with `clip`, its content is clipped to that pixel box.
+  /// Opens a named group (names document the drawing; cairo's SVG does not keep them); with
+  /// `clip`, its content is clipped to that pixel box.
   virtual void begin_group(const std::string& name, const Eigen::AlignedBox2d* clip = nullptr);
   virtual void end_group();
 
@@ -124,7 +125,13 @@ class Canvas {
   double sx_ = 1.0, sy_ = 1.0;
 };
 
-/// Canvas for `out` by its extension: ".svg" or ".png"; anything else throws io::InputError.
+/// Picture file formats, chosen by the file's extension.
+enum class PictureFormat : std::uint8_t { png, svg, pdf };
+
+/// Format of `out` by its extension (".png", ".svg", ".pdf", any case); else io::InputError.
+PictureFormat picture_format(const std::filesystem::path& out);
+
+/// Canvas for `out` (a CairoCanvas); an extension picture_format rejects throws io::InputError.
 std::unique_ptr<Canvas> make_canvas(const std::filesystem::path& out);
 
 }  // namespace rownav::io

@@ -1,6 +1,6 @@
 #pragma once
-/// @file plot.hpp Line plots (error over time / distance) as SVG or PNG: nice ticks, grid, axis
-/// labels, legend, shaded x intervals; NaN breaks a line.
+/// @file plot.hpp Line plots (error over time / distance) as PNG, SVG or PDF: nice ticks, grid,
+/// axis labels, legend, shaded x intervals; NaN breaks a line.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -33,7 +33,8 @@ struct PlotOptions {
 /// Draws the plot on `canvas` (sets its view to width_px x height_px).
 void draw_plot(Canvas& canvas, const std::vector<Series>& series, const PlotOptions& options);
 
-/// Draws and saves a plot; the format follows the extension (.svg / .png, else io::InputError).
+/// Draws and saves a plot; the format follows the extension (.png / .svg / .pdf, else
+/// io::InputError).
 void write_plot(const std::filesystem::path& out, const std::vector<Series>& series,
                 const PlotOptions& options);
 
