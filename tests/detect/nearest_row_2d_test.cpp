@@ -44,9 +44,11 @@ constexpr KnownMiss kKnownMisses[] = {
     {"parallel_lines", 0.0078, 0.0031, "false step-ins onto short bands far ahead (x > 5 m)"},
     {"cone_rect", 0.0844, 0.0859, "step-in off: the cone heading is too rough for the band search"},
     {"ransac_lines", 0.0188, 0.0281, "one-sided frames are not checked; false step-ins"},
-    {"pearl", 0.0188, 0.0641, "one-sided frames are not checked; false step-ins"},
-    {"opal", 0.0188, 0.0453, "one-sided frames are not checked; false step-ins"},
-    {"ruby", 0.0156, 0.0453, "one-sided frames are not checked; false step-ins"},
+    // The PEARL family runs without the check in config/detect/vineyard.yaml (it broke the 2D
+    // closed loop of bench --quick); with it: 1.88 / 1.88 / 1.56 % gross.
+    {"pearl", 0.1391, 0.1984, "nearest-row check off in vineyard.yaml (closed-loop regression)"},
+    {"opal", 0.0922, 0.1219, "nearest-row check off in vineyard.yaml (closed-loop regression)"},
+    {"ruby", 0.1047, 0.1391, "nearest-row check off in vineyard.yaml (closed-loop regression)"},
 };
 
 // Every scenario: 2 presets x 4 spacings x thin / thick canopy, seeded (the frames are the same
