@@ -76,8 +76,10 @@ inline void check_message(const std::exception& e, const std::string& name) {
   const bool one_line = what.find('\n') == std::string_view::npos &&
                         what.find('\r') == std::string_view::npos && !what.empty();
   if (!one_line || what.find(name) == std::string_view::npos) {
-    std::fprintf(stderr, "rownav fuzz: error message breaks the one-line contract (%s, naming "
-                 "%s): [%s]\n", one_line ? "one line" : "NOT one line", name.c_str(), e.what());
+    std::fprintf(stderr,
+                 "rownav fuzz: error message breaks the one-line contract (%s, naming "
+                 "%s): [%s]\n",
+                 one_line ? "one line" : "NOT one line", name.c_str(), e.what());
     std::abort();
   }
 }

@@ -12,9 +12,9 @@
 namespace {
 
 constexpr std::array<std::string_view, 13> kFiles = {
-    "manifest.yaml",   "lidar/frames.csv", "lidar/scans.csv",  "lidar/000000.pcd",
-    "lidar/000001.pcd", "encoders.csv",    "imu.csv",          "gnss.csv",
-    "ground_truth.csv", "field/rows.csv",  "field/plants.csv", "inputs.csv",
+    "manifest.yaml",    "lidar/frames.csv", "lidar/scans.csv",  "lidar/000000.pcd",
+    "lidar/000001.pcd", "encoders.csv",     "imu.csv",          "gnss.csv",
+    "ground_truth.csv", "field/rows.csv",   "field/plants.csv", "inputs.csv",
     "lidar/000002.pcd"};
 
 void write_archive(const std::filesystem::path& dir, std::string_view text) {
