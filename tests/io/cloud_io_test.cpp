@@ -225,6 +225,18 @@ TEST_F(CloudIoTest, HeadersPclWouldCrashOnAreRefusedWithTheirLine) {
   EXPECT_EQ(read_cloud(write("ok.ply", ply + "1" + props + "1 2 3\n")).size(), 1u);
 }
 
+// Found by pcd_fuzz (issue 13): PCL reads on past DATA while a line starts with a keyword
+// ("COLUMNS" = FIELDS), a heap use-after-free on binary data that starts so.
+TEST_F(CloudIoTest, DataThatPclWouldReadAsHeaderIsRefused) {
+  const std::string head = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nPOINTS 2\nDATA binary\n";
+  for (const std::string start : {"COLUMNS a b\n", "\n# c\nFIELDSx\n", "SIZE 8\n"}) {
+    const std::string e = error_of(write("d.pcd", head + start + std::string(24, '\0')));
+    EXPECT_NE(e.find("d.pcd:line "), std::string::npos) << e;
+    EXPECT_NE(e.find(", which PCL would read as header)"), std::string::npos) << e;
+  }
+  EXPECT_EQ(read_cloud(write("d.pcd", head + std::string(24, '\0'))).size(), 2u);
+}
+
 TEST(PointsCsv, CornRowsDataset) {
   const auto clouds = read_points_csv(fs::path(ROWNAV_SHARED_DATA) / "corn_rows_2d/scans.csv");
   ASSERT_EQ(clouds.size(), 1630u);
