@@ -273,6 +273,17 @@ TEST_F(CloudIoTest, PointsCsvHeaderlessStampAndErrors) {
   EXPECT_TRUE(read_points_csv(write("empty.csv", "")).empty());
 }
 
+// Found by points_csv_fuzz (issue 13): a '\r' in an unknown header cell broke the one line.
+TEST_F(CloudIoTest, PointsCsvUnknownColumnIsEscaped) {
+  try {
+    read_points_csv(write("cr.csv", "x,y,a\rb\x01\n1,2,3\n"));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cr.csv:1: unknown column 'a\\rb?'"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(CloudIoTest, ScansCsvRoundTrip) {
   std::vector<core::Scan2D> scans(3);
   for (std::size_t k = 0; k < scans.size(); ++k) {
