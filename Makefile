@@ -2,8 +2,10 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 600
 
-.PHONY: deps configure build build-demo demo test test-asan bench bench-suite format clean
+.PHONY: deps configure build build-demo demo test test-asan test-fuzz fuzz-build fuzz bench bench-suite format clean
 
 deps:
 	scripts/install-deps
@@ -23,11 +25,28 @@ demo: build-demo
 	$(BUILD)/rownav demo --out out/demo --overwrite
 
 ## test: install what is missing, build, run every test, then the quick closed-loop benchmark
-## (fails when a tracked metric regresses beyond bench/quick_baseline.json's tolerances)
+## (fails when a tracked metric regresses beyond bench/quick_baseline.json's tolerances).
+## The 30 s fuzz runs are `make test-fuzz` (a separate clang + ASan build tree): not yet part of
+## `make test`, whose time on a fresh 2-core machine with them was not measured.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
 	rm -rf $(BUILD)/bench-quick
 	$(BUILD)/rownav bench --quick --out $(BUILD)/bench-quick --jobs $(JOBS)
+
+## test-fuzz: every fuzz target for 30 s (fails on a crash, an input over 1 s or over 512 MB)
+test-fuzz: fuzz-build
+	FUZZ_BUILD=$(FUZZ_BUILD) FUZZ_JOBS=$(JOBS) scripts/fuzz 30
+
+## fuzz-build: the libFuzzer targets of fuzz/ with clang, ASan + UBSan (own build tree)
+fuzz-build: deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DROWNAV_FUZZ=ON -DROWNAV_BUILD_TESTS=OFF -DROWNAV_BUILD_BENCH=OFF \
+	  -DROWNAV_BUILD_ROS=OFF >/dev/null
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target rownav_fuzzers
+
+## fuzz: every fuzz target for FUZZ_SECONDS (600) s, two at a time (BENCHMARK.md, issue 13)
+fuzz: fuzz-build
+	FUZZ_BUILD=$(FUZZ_BUILD) FUZZ_JOBS=$(JOBS) scripts/fuzz $(FUZZ_SECONDS)
 
 ## test-asan: every CTest test under AddressSanitizer + UBSan (own build tree: build-asan/)
 test-asan: deps
@@ -49,4 +68,4 @@ format:
 	clang-format -i $$(git ls-files '*.hpp' '*.cpp')
 
 clean:
-	rm -rf $(BUILD) build-asan out
+	rm -rf $(BUILD) build-asan $(FUZZ_BUILD) out

@@ -88,6 +88,33 @@ PcdHeader read_pcd_header(std::istream& in, const std::string& name, core::Point
   bad_pcd(name, 0, "no DATA line");
 }
 
+/// PCL 1.13's PCDReader does not stop at DATA: it reads on while a line's first word starts
+/// with a header keyword (or is a comment), and "COLUMNS" is its synonym of FIELDS. Data whose
+/// first line looks like that redefines the fields after the sizes were set: a heap
+/// use-after-free in PCDReader::read (pcd_fuzz, issue 13). Refuse it; real binary data starts
+/// so by chance about once in 2^32 files (a first float spelling "SIZE"...).
+void check_data_start(const std::filesystem::path& file, const PcdHeader& h,
+                      const std::string& name) {
+  static constexpr std::array<std::string_view, 11> kPclPrefixes{
+      "VERSION", "FIELDS", "COLUMNS",   "SIZE",   "TYPE", "COUNT",
+      "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(h.data_offset));
+  std::string line;
+  for (int n = h.lines.at("DATA") + 1; std::getline(in, line); ++n) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const std::string_view word =
+        std::string_view(line).substr(first, line.find_first_of(" \t\r", first) - first);
+    for (const auto& k : kPclPrefixes)
+      if (word.substr(0, k.size()) == k)
+        bad_pcd(name, n,
+                "the data starts with the header keyword " + quote_for_message(word) +
+                    ", which PCL would read as header");
+    return;
+  }
+}
+
 /// Bytes per point and values per point; checks FIELDS / SIZE / TYPE / COUNT agree.
 std::pair<std::int64_t, std::int64_t> pcd_point_layout(PcdHeader& h, const std::string& name) {
   auto& k = h.keys;
@@ -249,6 +276,7 @@ bool check_pcd_header(const std::filesystem::path& file, const std::string& name
   const std::uint64_t size = std::filesystem::file_size(file);
   const std::uint64_t available = size > h.data_offset ? size - h.data_offset : 0;
   check_pcd_data(in, h, name, available, static_cast<std::uint64_t>(points), layout);
+  check_data_start(file, h, name);
   return has_meta;
 }
 

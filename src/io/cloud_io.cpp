@@ -65,8 +65,9 @@ PointColumns header_columns(const CsvReader& csv) {
                         : name == "intensity" ? &c.intensity
                                               : nullptr;
     if (!slot)
-      csv.fail("unknown column '" + std::string(name) +
-               "' (valid: frame, stamp, x, y, z, intensity)");
+      // Quoted and escaped: a header cell may hold a '\r' or control bytes (points_csv_fuzz).
+      csv.fail("unknown column " + quote_for_message(name) +
+               " (valid: frame, stamp, x, y, z, intensity)");
     *slot = i;
   }
   if (c.x == PointColumns::npos || c.y == PointColumns::npos) csv.fail("need columns x and y");

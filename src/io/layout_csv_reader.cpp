@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "layout_raw.hpp"
+#include "rownav/io/csv.hpp"
 #include "rownav/io/layout_reader.hpp"
 
 namespace rownav::io {
@@ -34,7 +35,8 @@ double csv_number(const std::string& cell, const std::string& column, const std:
     if (used == cell.size() && std::isfinite(v)) return v;
   } catch (const std::exception&) {
   }
-  throw InputError(file, where, column + ": '" + cell + "' is not a number");
+  // Quoted and escaped: a cell may hold a '\r' or control bytes, and the error is one line.
+  throw InputError(file, where, column + ": " + quote_for_message(cell) + " is not a number");
 }
 
 /// Column indices of a CSV header.
@@ -67,7 +69,7 @@ CsvColumns csv_columns(const std::vector<std::string>& header, const std::string
     else if (h == "block")
       c.block = idx;
     else
-      throw InputError(file, where, "unknown column '" + h + "'");
+      throw InputError(file, where, "unknown column " + quote_for_message(h));
   }
   if (lon >= 0 && lat >= 0 && c.x < 0 && c.y < 0) c.geographic = true, c.x = lon, c.y = lat;
   if (c.row < 0 || c.x < 0 || c.y < 0)
@@ -98,15 +100,16 @@ void csv_line(RawLayout& raw, const CsvColumns& c, const std::vector<std::string
       raw.add_row(RawRow{{}, block, label, where, {}}, file);
       it = raw.rows.end() - 1;
     }
-    if (it->block != block) throw InputError(file, where, "row '" + label + "' changes block");
+    if (it->block != block)
+      throw InputError(file, where, "row " + quote_for_message(label) + " changes block");
     it->points.push_back(p);
     it->point_wheres.push_back(where);
   } else if (detail::plant_kind(kind, pk)) {
     raw.add_plant({p, pk, label, where}, file);
   } else {
-    throw InputError(
-        file, where,
-        "kind: unknown '" + kind + "' (expected row, vine, tree, crop, post or end_post)");
+    throw InputError(file, where,
+                     "kind: unknown " + quote_for_message(kind) +
+                         " (expected row, vine, tree, crop, post or end_post)");
   }
 }
 
@@ -134,11 +137,13 @@ sim::RowLayout read_csv_layout(const std::filesystem::path& file,
   if (!columns) throw InputError(name, "", "no header line");
   for (const auto& r : raw.rows)
     if (r.points.size() < 2)
-      throw InputError(name, r.where, "row '" + r.label + "' has fewer than 2 points");
+      throw InputError(name, r.where,
+                       "row " + quote_for_message(r.label) + " has fewer than 2 points");
   for (const auto& p : raw.plants)
     if (std::none_of(raw.rows.begin(), raw.rows.end(),
                      [&](auto& r) { return r.label == p.row_label; }))
-      throw InputError(name, p.where, "row '" + p.row_label + "' has no row points");
+      throw InputError(name, p.where,
+                       "row " + quote_for_message(p.row_label) + " has no row points");
   return detail::finish_layout(std::move(raw), file, options);
 }
 

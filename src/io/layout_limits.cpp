@@ -57,6 +57,9 @@ nlohmann::json parse_json_limited(const std::string& text, int max_depth, const 
     return json::parse(text, limit);
   } catch (const json::parse_error& e) {
     throw InputError(file, "byte " + std::to_string(e.byte), "invalid JSON");
+  } catch (const json::out_of_range&) {
+    // A number too large for a double ("1E400") is not a parse_error in nlohmann::json 3.11.
+    throw InputError(file, "", "invalid JSON: a number is out of range");
   } catch (const TooDeep&) {
     throw InputError(file, "byte " + std::to_string(too_deep_at(text, max_depth) + 1),
                      "layout.limits.max_json_depth: JSON nested deeper than " +

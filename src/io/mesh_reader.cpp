@@ -88,6 +88,21 @@ struct ColladaScan {
     }
     return out;
   }
+  /// Index lists (`<p>`, `<vcount>`, `<v>`, `<h>`) hold only unsigned integers: assimp 5's
+  /// parser does not advance on another character and appends indices until memory runs out
+  /// (`<p>0!1 2</p>`: 800 MB, found by mesh_fuzz, issue 13).
+  void check_index_lists() const {
+    for (const std::string_view tag : {"<p>", "<vcount>", "<v>", "<h>"})
+      for (std::size_t at = text.find(tag); at != std::string_view::npos;
+           at = text.find(tag, at + 1)) {
+        const std::size_t begin = at + tag.size(), end = text.find('<', begin);
+        const std::string_view list = text.substr(begin, end - begin);
+        const std::size_t bad = list.find_first_not_of("0123456789 \t\r\n");
+        if (bad != std::string_view::npos)
+          fail(begin + bad, std::string(tag) + " holds " + quote_for_message(list.substr(bad, 1)) +
+                                ", not an index");
+      }
+  }
   /// Every `<accessor>` must read inside its array: offset + (count - 1) * stride + params.
   void check_accessors() const {
     const auto sizes = arrays();
@@ -135,7 +150,9 @@ sim::TriangleMesh read_mesh(const std::filesystem::path& file, sim::SurfaceClass
   // outside the array and crashes): check them against the arrays first.
   if (is_collada(file)) {
     const std::string text = file_text(file);
-    ColladaScan{text, name}.check_accessors();
+    const ColladaScan scan{text, name};
+    scan.check_index_lists();
+    scan.check_accessors();
   }
   Assimp::Importer importer;
   // Pre-transforming bakes the node hierarchy (DAE / OBJ groups) into world-frame vertices.

@@ -225,6 +225,18 @@ TEST_F(CloudIoTest, HeadersPclWouldCrashOnAreRefusedWithTheirLine) {
   EXPECT_EQ(read_cloud(write("ok.ply", ply + "1" + props + "1 2 3\n")).size(), 1u);
 }
 
+// Found by pcd_fuzz (issue 13): PCL reads on past DATA while a line starts with a keyword
+// ("COLUMNS" = FIELDS), a heap use-after-free on binary data that starts so.
+TEST_F(CloudIoTest, DataThatPclWouldReadAsHeaderIsRefused) {
+  const std::string head = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nPOINTS 2\nDATA binary\n";
+  for (const std::string start : {"COLUMNS a b\n", "\n# c\nFIELDSx\n", "SIZE 8\n"}) {
+    const std::string e = error_of(write("d.pcd", head + start + std::string(24, '\0')));
+    EXPECT_NE(e.find("d.pcd:line "), std::string::npos) << e;
+    EXPECT_NE(e.find(", which PCL would read as header)"), std::string::npos) << e;
+  }
+  EXPECT_EQ(read_cloud(write("d.pcd", head + std::string(24, '\0'))).size(), 2u);
+}
+
 TEST(PointsCsv, CornRowsDataset) {
   const auto clouds = read_points_csv(fs::path(ROWNAV_SHARED_DATA) / "corn_rows_2d/scans.csv");
   ASSERT_EQ(clouds.size(), 1630u);
@@ -259,6 +271,17 @@ TEST_F(CloudIoTest, PointsCsvHeaderlessStampAndErrors) {
   EXPECT_THROW(read_points_csv(write("unk.csv", "x,y,w\n1,2,3\n")), InputError);
   EXPECT_THROW(read_points_csv(dir_ / "none.csv"), InputError);
   EXPECT_TRUE(read_points_csv(write("empty.csv", "")).empty());
+}
+
+// Found by points_csv_fuzz (issue 13): a '\r' in an unknown header cell broke the one line.
+TEST_F(CloudIoTest, PointsCsvUnknownColumnIsEscaped) {
+  try {
+    read_points_csv(write("cr.csv", "x,y,a\rb\x01\n1,2,3\n"));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cr.csv:1: unknown column 'a\\rb?'"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(CloudIoTest, ScansCsvRoundTrip) {

@@ -173,5 +173,35 @@ TEST(CsvLayout, MalformedInputNamesTheLine) {
   expect_input_error([] { read_csv_layout(write_temp("c8.csv", "row,x,y\n")); }, "no rows");
 }
 
+// Found by csv_layout_fuzz (issue 13): a '\r' inside a cell was copied into the message, which
+// then was not one line on a terminal.
+TEST(CsvLayout, ControlBytesOfACellAreEscapedInTheMessage) {
+  const std::string cell = std::string("5H\r\x01", 4);
+  for (const std::string& text : {"row,lon,lat\nr0,-0.1," + cell + "\n", "row,x,y," + cell + "\n",
+                                  "kind,row,x,y\n" + cell + ",1,0,0\n"}) {
+    try {
+      read_csv_layout(write_temp("cr.csv", text));
+      ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find_first_of("\r\n\x01"), std::string::npos) << what;
+      EXPECT_NE(what.find("'5H\\r?'"), std::string::npos) << what;
+    }
+  }
+}
+
+// Found by geojson_layout_fuzz (issue 13): nlohmann::json throws out_of_range, not parse_error,
+// for a number beyond a double; it escaped the reader without the file name.
+TEST(GeoJsonLayout, NumberBeyondADoubleIsAnInputError) {
+  expect_input_error(
+      [] {
+        read_geojson_layout(write_temp(
+            "big.geojson",
+            R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+            R"("geometry":{"type":"LineString","coordinates":[[0,51.59E719714182216],[0,51]]}}]})"));
+      },
+      "big.geojson: invalid JSON: a number is out of range");
+}
+
 }  // namespace
 }  // namespace rownav::io

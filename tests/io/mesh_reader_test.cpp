@@ -93,6 +93,21 @@ TEST(MeshReader, ColladaAccessorsMustStayInsideTheirArrays) {
   }
 }
 
+// Found by mesh_fuzz (issue 13): assimp 5 loops on a non-digit in an index list, appending
+// indices until memory runs out (800 MB); refused with its position first.
+TEST(MeshReader, ColladaIndexListsHoldOnlyIndices) {
+  std::string dae = collada_quad("3");
+  dae.replace(dae.find("<p>0 1 2"), 8, "<p>0!1 2");
+  try {
+    read_mesh(write_temp("bang.dae", dae), sim::SurfaceClass::ground);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.position(), "7:75") << e.what();
+    EXPECT_NE(std::string(e.what()).find("<p> holds '!', not an index"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(MeshReader, VineInstancedAlongARow) {
   const sim::TriangleMesh vine = read_mesh(kVine, sim::SurfaceClass::canopy);
   sim::TerrainConfig tc;

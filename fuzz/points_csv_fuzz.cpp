@@ -1,0 +1,9 @@
+// CSV points (io::read_points_csv).
+#include "fuzz_common.hpp"
+#include "rownav/io/cloud_io.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const auto file = rownav::fuzz::input_file("csv", data, size);
+  rownav::fuzz::expect_clean(file.string(), [&] { (void)rownav::io::read_points_csv(file); });
+  return 0;
+}
