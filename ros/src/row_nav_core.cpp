@@ -103,9 +103,8 @@ void RowNavCore::on_imu(const sensor_msgs::Imu& msg) {
 std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
   try {
     const OdomSample s = to_odom(msg);
-    const auto before = stack_->stats().odometry;
-    stack_->on_odometry({s.stamp, s.T_odom_base, s.twist});
-    if (stack_->stats().odometry == before) return std::nullopt;  // late or not finite
+    if (!stack_->on_odometry({s.stamp, s.T_odom_base, s.twist}))
+      return std::nullopt;  // late or not finite
     last_odom_stamp_ = s.stamp;
     if (!started_) return std::nullopt;
     return stack_->command(s.stamp).cmd;

@@ -28,15 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 volatile std::sig_atomic_t g_stop = 0;
 
-/// Removes the staging folders io::OutputDir left for `dir` (".<name>.rownav-partial-XXXXXX").
-void remove_staging_of(const fs::path& dir) {
-  std::error_code ec;
-  std::string prefix(1, '.');  // appended: GCC 12 warns on "." + string (-Wrestrict)
-  prefix.append(dir.filename().string()).append(".rownav-");
-  for (const auto& e : fs::directory_iterator(dir.parent_path(), ec))
-    if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove_all(e.path(), ec);
-}
-
 /// The bench folder must be new, empty or an earlier bench output (resumed): never a user's.
 void claim_bench_dir(const fs::path& out) {
   check_output_dir(out, true);
@@ -165,7 +156,7 @@ class Batch {
     // A fresh start: no half-written output of an earlier, killed attempt (the bench folder is
     // rownav's, claimed by run_cells; a runner killed with SIGKILL may leave its staging folder).
     fs::remove_all(dir);
-    remove_staging_of(dir);
+    remove_stale_staging(dir);
     fs::create_directories(dir.parent_path());
     int error = 0;
     const pid_t pid = spawn(o_.runner, cells_[i].run_args(dir), running_log(i), error);

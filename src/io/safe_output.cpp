@@ -34,6 +34,13 @@ fs::path parent_of(const fs::path& p) {
   return p.has_parent_path() ? p.parent_path() : fs::path(".");
 }
 
+/// ".<name>.rownav-": the start of every staging name beside `target`.
+std::string staging_prefix(const fs::path& target) {
+  std::string name(1, '.');  // appended piece by piece: GCC 12 warns on "." + string (-Wrestrict)
+  name.append(target.filename().string()).append(".rownav-");
+  return name;
+}
+
 /// A unique hidden name beside `target` (".<name>.rownav-<tag>-XXXXXX", a file keeps the
 /// target's extension so writers that pick the format by it still do): mkdtemp / mkstemps.
 fs::path unique_beside(const fs::path& target, const std::string& tag, bool dir) {
@@ -42,9 +49,8 @@ fs::path unique_beside(const fs::path& target, const std::string& tag, bool dir)
   fs::create_directories(parent, ec);
   if (ec) refuse(parent, "cannot create: " + ec.message());
   const std::string ext = dir ? "" : target.extension().string();
-  std::string name(1, '.');  // appended piece by piece: GCC 12 warns on "." + string (-Wrestrict)
-  name.append(target.filename().string()).append(".rownav-").append(tag).append("-XXXXXX");
-  name.append(ext);
+  std::string name = staging_prefix(target);
+  name.append(tag).append("-XXXXXX").append(ext);
   const std::string tmpl = (parent / name).string();
   std::vector<char> buf(tmpl.begin(), tmpl.end());
   buf.push_back('\0');
@@ -78,6 +84,14 @@ bool contains_cwd(const fs::path& dir) {
 }
 
 }  // namespace
+
+void remove_stale_staging(const fs::path& target) {
+  const fs::path t = normalized(target);
+  const std::string prefix = staging_prefix(t);
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(parent_of(t), ec))
+    if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove_all(e.path(), ec);
+}
 
 bool is_rownav_output(const fs::path& dir) {
   std::error_code ec;

@@ -83,11 +83,10 @@ void NavStack::on_gnss(const core::GnssFix& s) {
   if (accept(s.stamp, last_gnss_, stats_.gnss, stats_.dropped_gnss)) localizer_.add_gnss(s);
 }
 
-void NavStack::on_odometry(const localize::StampedPose& s) {
-  if (external_.push(s))
-    ++stats_.odometry;
-  else
-    ++stats_.dropped_odometry;
+bool NavStack::on_odometry(const localize::StampedPose& s) {
+  const bool ok = external_.push(s);
+  ++(ok ? stats_.odometry : stats_.dropped_odometry);
+  return ok;
 }
 
 void NavStack::measure_period(double t) {
@@ -98,24 +97,21 @@ void NavStack::measure_period(double t) {
   last_cloud_stamp_ = t;
 }
 
-void NavStack::on_cloud(core::PointCloud cloud) {
-  const double t = cloud.stamp;
+bool NavStack::accept_frame(double t) {
   if (!std::isfinite(t) || (last_frame_stamp_ && t <= *last_frame_stamp_) ||
       (pending_ && t <= pending_->stamp()))
-    return void(++stats_.dropped_frames);
+    return ++stats_.dropped_frames, false;
   measure_period(t);
   if (pending_) ++stats_.replaced_frames;
-  pending_ = std::make_unique<Pending>(Pending{std::move(cloud)});
+  return true;
+}
+
+void NavStack::on_cloud(core::PointCloud cloud) {
+  if (accept_frame(cloud.stamp)) pending_ = std::make_unique<Pending>(Pending{std::move(cloud)});
 }
 
 void NavStack::on_scan(core::Scan2D scan) {
-  const double t = scan.stamp;
-  if (!std::isfinite(t) || (last_frame_stamp_ && t <= *last_frame_stamp_) ||
-      (pending_ && t <= pending_->stamp()))
-    return void(++stats_.dropped_frames);
-  measure_period(t);
-  if (pending_) ++stats_.replaced_frames;
-  pending_ = std::make_unique<Pending>(Pending{std::move(scan)});
+  if (accept_frame(scan.stamp)) pending_ = std::make_unique<Pending>(Pending{std::move(scan)});
 }
 
 std::optional<core::Pose2> NavStack::T_odom_base(double stamp) const {

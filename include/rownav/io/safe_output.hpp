@@ -70,6 +70,10 @@ class OutputFile {
   bool committed_ = false;
 };
 
+/// Removes staging paths an OutputDir / OutputFile left beside `target` (a process killed with
+/// SIGKILL cannot clean up): only names of rownav's staging pattern for that target.
+void remove_stale_staging(const std::filesystem::path& target);
+
 namespace detail {
 /// Registers a staging path for removal by the SIGINT / SIGTERM handler (installed on first
 /// use). Returns false when every slot is taken (the path is then only removed by destructors).

@@ -95,8 +95,9 @@ class NavStack {
   void on_encoders(const core::WheelEncoderSample& s);
   void on_imu(const core::ImuSample& s);
   void on_gnss(const core::GnssFix& s);
-  /// A pose of an external odometry (StackConfig::odometry = external).
-  void on_odometry(const localize::StampedPose& s);
+  /// A pose of an external odometry (StackConfig::odometry = external); false when it was
+  /// dropped (not newer than the newest, or not finite).
+  bool on_odometry(const localize::StampedPose& s);
   /// A 3D sweep in the LiDAR frame (per-point times); processed by the next command().
   void on_cloud(core::PointCloud cloud);
   /// A 2D scan in the LiDAR frame; processed by the next command().
@@ -122,6 +123,7 @@ class NavStack {
   core::RowObservation detect_frame(Pending& frame, bool& levelled);
   NavOutput navigate_frame(double stamp, const core::Pose2& T, FrameReport& report);
   void measure_period(double frame_stamp);
+  bool accept_frame(double frame_stamp);  // false: dropped (late, duplicate, not finite)
   void apply(const NavOutput& out);
   core::Twist2 limit(const core::Twist2& cmd, double stamp);
   void watch_inputs(NavCommand& c, NavOutput& out, double stamp);
