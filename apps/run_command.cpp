@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "rownav/io/closed_loop_runner.hpp"
+#include "rownav/io/detector_registry.hpp"
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/fault_metrics.hpp"
 #include "rownav/io/tracker_registry.hpp"
@@ -15,6 +16,7 @@
 #include "rownav/io/progress.hpp"
 #include "rownav/io/run_metrics.hpp"
 #include "rownav/io/run_report.hpp"
+#include "rownav/io/detector_registry.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
@@ -112,9 +114,9 @@ bool run_mission(const RunArgs& a) {
   s.mission = io::load_mission(a.mission);
   load_nav_stack(a, field_config, s);
   if (a.row_end_policy) s.nav.navigator.row_ends.policy = *a.row_end_policy;
-  s.detector = a.detector;
   s.detect_config =
       crop_config_for(a, field_config, a.detect_config, "detect", "--detect-config");
+  s.detector = a.detector.empty() ? io::default_detector(s.detect_config) : a.detector;
   s.time_limit = a.time_limit;
   if (s.sensors.faults.any()) s.settle = 3.0;  // where the robot comes to rest after a stop
   make_stack(a, s);
@@ -130,7 +132,7 @@ bool run_mission(const RunArgs& a) {
                      a.robot.stem().string(),
                      a.sensor ? a.sensor->stem().string() : "default",
                      a.mission.stem().string(),
-                     a.detector,
+                     s.detector,
                      a.tracker,
                      a.controller,
                      a.seed};
@@ -166,7 +168,7 @@ void add_run_command(CLI::App& app) {
               "replace --out when it holds an earlier rownav output (never another folder)");
   c->add_option("--sensor", a->sensor, "sensors YAML (config/sensors); default OS1-16")
       ->check(CLI::ExistingFile);
-  c->add_option("--detector", a->detector, "row detector (default hough_skew)");
+  c->add_option("--detector", a->detector, "row detector (default: the detection config's `detector:` key, e.g. trunk_lines for orchards; else hough_skew)");
   c->add_option("--tracker", a->tracker, "row tracker: model_matching, line_ekf, model_filter (default), none (raw detector corridor)");
   c->add_option("--controller", a->controller, "path controller: stanley (default), lookahead_pid, fir_pid, pure_pursuit");
   c->add_option("--detect-config", a->detect_config, "detection config YAML")

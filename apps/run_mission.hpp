@@ -18,7 +18,7 @@ struct RunArgs {
       nav_config;
   /// a YAML file with a `faults:` section (sim::FaultsConfig), replacing the sensors' faults
   std::optional<std::filesystem::path> faults;
-  std::string detector = "hough_skew";
+  std::string detector;  ///< empty: the detection config's `detector:` key, else hough_skew
   std::string tracker = "model_filter";
   std::string controller = "stanley";
   std::optional<navigate::RowEndPolicy> row_end_policy;  ///< overrides the navigator config

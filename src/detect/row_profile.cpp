@@ -44,7 +44,8 @@ void RowProfile::window(const core::RowObservation& obs, std::size_t k, double& 
   const auto gap = [&](std::size_t j) { return std::abs(obs.rows[j].offset - r.offset); };
   // With no inner neighbour (a single row seen) the robot is the inner limit.
   const double g_in = has_in ? gap(left ? k - 1 : k + 1) : std::abs(r.offset);
-  lo = -config_.inner_ratio * g_in;
+  // A centre line (trunks) has its inner face between it and the robot: look up to midway.
+  lo = -(r.centre_line ? 0.5 : config_.inner_ratio) * g_in;
   hi = has_out ? config_.outer_ratio * gap(left ? k + 1 : k - 1) : config_.outer_ratio_last * g_in;
 }
 
@@ -66,7 +67,7 @@ void RowProfile::profile(const core::PointCloud& cloud, core::RowLine& r, double
   for (const auto& q : samples_)
     if (q.z >= z_crown) buf_.push_back(q.s);
   if (buf_.empty()) return;
-  const float crown = quantile(buf_, 0.5);
+  const float crown = r.centre_line ? 0.0f : quantile(buf_, 0.5);
   buf_.clear();
   for (const auto& q : samples_) buf_.push_back(q.s);
   const float face = quantile(buf_, config_.face_quantile);

@@ -11,6 +11,7 @@
 #include "rownav/detect/parallel_lines.hpp"
 #include "rownav/detect/pearl.hpp"
 #include "rownav/detect/ransac_lines.hpp"
+#include "rownav/detect/trunk_lines.hpp"
 #include "rownav/io/section_registry.hpp"
 
 namespace rownav::io {
@@ -48,6 +49,8 @@ const Registry& registry() {
           {"cone_rect", Registry::creator<detect::ConeRectDetector, detect::ConeRectConfig>()},
           {"ransac_lines",
            Registry::creator<detect::RansacLinesDetector, detect::RansacLinesConfig>()},
+          {"trunk_lines",
+           Registry::creator<detect::TrunkLinesDetector, detect::TrunkLinesConfig>()},
           {"pearl", pearl_creator(detect::PearlVariant::pearl)},
           {"opal", pearl_creator(detect::PearlVariant::opal)},
           {"ruby", pearl_creator(detect::PearlVariant::ruby)},
@@ -65,6 +68,19 @@ std::unique_ptr<detect::RowDetector> make_detector(const std::string& name,
   return registry().find(name).make(section, file, name);
 }
 
+std::string default_detector(const std::filesystem::path& config) {
+  const std::string fallback = "hough_skew";
+  if (config.empty()) return fallback;
+  const YAML::Node root = load_yaml_file(config);
+  if (!root || !root.IsMap() || !root["detector"]) return fallback;
+  const YAML::Node key = root["detector"];
+  if (!key.IsScalar())
+    detail::yaml_fail_validation(config.string(), key, "detector", "must be a detector name");
+  const std::string name = key.as<std::string>();
+  registry().find(name);  // unknown name: the registry's one-line error
+  return name;
+}
+
 detect::DetectionPipeline make_pipeline(const std::string& name,
                                         const std::filesystem::path& config,
                                         const Eigen::Isometry3d& T_base_lidar) {
@@ -72,7 +88,7 @@ detect::DetectionPipeline make_pipeline(const std::string& name,
   if (config.empty()) return {pre, registry().make(name, config), T_base_lidar};
   const std::string file = config.string();
   const YAML::Node root = load_yaml_file(config);
-  auto detector = registry().make(name, root, file, {"preprocess"});
+  auto detector = registry().make(name, root, file, {"preprocess", "detector"});
   if (root && root.IsMap()) decode_section(root["preprocess"], pre, file, "preprocess");
   return {pre, std::move(detector), T_base_lidar};
 }

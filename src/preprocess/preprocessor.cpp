@@ -41,6 +41,7 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
     return (h >= lo) & (h <= hi);
   });
   out_.points.clear();
+  out_.heights.clear();
   if (config_.use_scan) {
     out_.scan.stamp = cloud_base.stamp;
     scan_.project(cropped_, &ground_, out_.scan);
@@ -57,7 +58,10 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
     statistical_.filter(out_.cloud.points, tmp3_);
     out_.cloud.points.swap(tmp3_);
   }
-  for (const auto& p : out_.cloud.points) out_.points.emplace_back(p.x, p.y);
+  for (const auto& p : out_.cloud.points) {
+    out_.points.emplace_back(p.x, p.y);
+    out_.heights.push_back(ground_.height(p));  // trunk bands on sloped / rough ground
+  }
   return out_;
 }
 
@@ -112,6 +116,7 @@ detect::DetectorInput Preprocessor::input(double stamp) const {
   in.stamp = stamp;
   in.points = out_.points;
   in.cloud = last_was_3d_ ? &out_.cloud : nullptr;
+  in.heights = last_was_3d_ ? &out_.heights : nullptr;
   return in;
 }
 

@@ -37,6 +37,9 @@ struct RowLine {
   /// [m] canopy half width: the inner face lies this far from the centre line towards the
   /// robot (issue 10; 0 when unknown)
   double half_width = 0.0;
+  /// `line` is the row's centre line already (a line through trunk centres,
+  /// detect/trunk_lines.hpp): the row profile keeps centre_shift 0 and measures only half_width
+  bool centre_line = false;
 };
 
 /// [m] lateral position at x = 0 of the row's centre line (left +): the fitted line moved by

@@ -14,6 +14,9 @@ struct DetectorInput {
   double stamp = 0.0;                    ///< [s]
   std::vector<Eigen::Vector2f> points;   ///< 2D points: a scan, or a 3D cloud projected to 2D
   const core::PointCloud* cloud = nullptr;  ///< the 3D cloud (base frame) when the sensor is 3D
+  /// [m] height above the estimated ground of each cloud point (same order as cloud->points),
+  /// when the preprocessing estimated it; null: base z is the height (flat ground at z = 0)
+  const std::vector<float>* heights = nullptr;
   /// The points are one planar scan (a 2D scanner at its own height), not a projection of a cloud
   /// or a synthetic scene: what the beams meet first occludes what lies behind (issue 11).
   bool planar_scan = false;

@@ -29,6 +29,10 @@ std::unique_ptr<detect::RowDetector> make_detector(const std::string& name,
                                                    const YAML::Node& section,
                                                    const std::string& file);
 
+/// The detector a detection config file names as its crop's default (top-level key
+/// `detector:`), else hough_skew (the empty path too). InputError on a bad file or an unknown name.
+std::string default_detector(const std::filesystem::path& config);
+
 /// Builds the pipeline of detector `name` from a detection config file (empty path: every
 /// default). InputError on an unknown name, a bad file or a bad key.
 detect::DetectionPipeline make_pipeline(

@@ -61,6 +61,7 @@ struct PreprocessConfig {
 /// Result of one frame; buffers are reused between frames.
 struct Preprocessed {
   core::PointCloud cloud;               ///< kept 3D points (base frame), empty for 2D input
+  std::vector<float> heights;           ///< [m] each cloud point's height above the ground
   std::vector<Eigen::Vector2f> points;  ///< kept points in the plane (x, y)
   std::size_t dropped_invalid = 0;      ///< NaN / Inf points removed
   core::Scan2D scan;                    ///< the virtual scan (3D input with use_scan only)
