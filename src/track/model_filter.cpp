@@ -32,6 +32,7 @@ void ModelFilterConfig::validate() const {
   core::check_non_negative(init_min_distance, "init_min_distance");
   core::check(init_max_distance > init_min_distance, "init_max_distance",
               "must be > init_min_distance");
+  core::check_non_negative(init_spacing_ratio, "init_spacing_ratio");
   core::check_positive(max_slope_change, "max_slope_change");
   core::check_positive(max_offset_change, "max_offset_change");
   core::check_positive(spacing_tolerance, "spacing_tolerance");
@@ -70,13 +71,19 @@ double ModelFilterTracker::mean_spacing() const {
   return std::accumulate(spacings_.begin(), spacings_.end(), 0.0) / double(spacings_.size());
 }
 
-bool ModelFilterTracker::in_box(const core::RowLine& r, int s) const {
+double ModelFilterTracker::init_max() const {
+  // Only the spacing measured over accepted frames: one frame's rows can skip a row (two rows
+  // 10 m apart read as a 10 m spacing and would let the next row in).
+  return std::max(config_.init_max_distance, config_.init_spacing_ratio * measured_spacing());
+}
+
+bool ModelFilterTracker::in_box(const core::RowLine& r, int s, double init_max) const {
   const bool side = s == 0 ? r.offset > 0.0 : r.offset < 0.0;
   if (!side) return false;
   if (!have_[s] || std::abs(model_[s].a) > config_.max_steepness) {
     // Malavazi 2018 sec. 3.1.1: no (or a steep) model: the rows on that side, 0.3-3 m away.
     const double d = std::abs(r.offset);
-    return d >= config_.init_min_distance && d <= config_.init_max_distance;
+    return d >= config_.init_min_distance && d <= init_max;
   }
   // Infinite-length box of half width box_half_width around the model (sec. 2.3.1), checked over
   // the row's support.
@@ -95,10 +102,11 @@ bool ModelFilterTracker::consistent(const SlopeIntercept& c, int s) const {
 bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
   // Model filter 1 + 2 (Malavazi 2018 Fig. 9): per side the nearest row inside its box.
   int pick[2] = {-1, -1};
+  const double window = init_max();
   for (int s = 0; s < 2; ++s)
     for (std::size_t i = 0; i < obs.rows.size(); ++i) {
       const auto& r = obs.rows[i];
-      if (!finite_row(r) || !in_box(r, s)) continue;
+      if (!finite_row(r) || !in_box(r, s, window)) continue;
       if (pick[s] < 0 || std::abs(r.offset) < std::abs(obs.rows[std::size_t(pick[s])].offset))
         pick[s] = static_cast<int>(i);
     }
@@ -132,7 +140,12 @@ bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Po
     }
   // Update filters: a side not seen for the coasting time is dropped.
   for (int s = 0; s < 2; ++s)
-    if (have_[s] && obs.stamp - seen_[s] > common().max_coast_time) have_[s] = false;
+    if (have_[s] && obs.stamp - seen_[s] > common().max_coast_time) {
+      // A side re-initialises: the width history belonged to the old pair of models and would
+      // reject the new one forever (a crown face taken for the row at the start, issue 10).
+      have_[s] = false;
+      spacings_.clear();
+    }
   if (ok[0] && ok[1]) {
     spacings_.push_back(cand[0].b - cand[1].b);
     while (static_cast<int>(spacings_.size()) > config_.history_size) spacings_.pop_front();

@@ -209,6 +209,45 @@ TEST(ModelFilter, PermanenceCounterFallsBackToInitialisation) {
   EXPECT_NEAR(out.lateral_error, -0.35, 0.01);
 }
 
+TEST(ModelFilter, ReachesTheFarCorridorRowOfAWideOrchardOnceTheSpacingIsMeasured) {
+  // 5 m rows, robot 1.2 m right of the centre: the left row is 3.7 m away, beyond the paper's
+  // 3 m initialisation window; the window grows to 0.9 x the measured spacing (issue 10).
+  ModelFilterTracker tracker;
+  test::CorridorScene scene;
+  scene.spacing = 5.0;
+  std::mt19937_64 rng(3);
+  RowTracking out;
+  for (int i = 0; i < 10; ++i) {
+    const core::Pose2 T(0.1 * i, -1.2, 0.0);
+    out = tracker.update(test::observe(scene, T, 0.1 * i, rng), T);
+  }
+  ASSERT_GE(out.left, 0);
+  ASSERT_GE(out.right, 0);
+  EXPECT_NEAR(out.lateral_error, -1.2, 0.02);
+}
+
+TEST(ModelFilter, AWrongFirstRowIsReplacedOnceItsSideCoastsOut) {
+  // The first frame's left row is a crown face 1.2 m in front of the row; later frames give
+  // the row. The stale width history must not reject the new left model forever.
+  ModelFilterTracker tracker;
+  test::CorridorScene scene;
+  scene.spacing = 5.0;
+  std::mt19937_64 rng(5);
+  const core::Pose2 T0(0.0, 0.0, 0.0);
+  core::RowObservation first = test::observe(scene, T0, 0.0, rng);
+  for (auto& r : first.rows)
+    if (r.offset > 0.0 && r.offset < 3.0) r.offset -= 1.2, r.line.point.y() -= 1.2;
+  tracker.update(first, T0);
+  RowTracking out;
+  for (int i = 1; i < 50; ++i) {  // the wrong model coasts out after max_coast_time (3 s)
+    const core::Pose2 T(0.1 * i, 0.0, 0.0);
+    out = tracker.update(test::observe(scene, T, 0.1 * i, rng), T);
+  }
+  ASSERT_GE(out.left, 0);
+  EXPECT_NEAR(out.rows[std::size_t(out.left)].offset, 2.5, 0.02);
+  EXPECT_NEAR(out.lateral_error, 0.0, 0.02);
+}
+
 TEST(TrackerConfigs, ValidateNamesTheField) {
   ModelMatchingConfig m;
   m.reject_zone = 0.3;

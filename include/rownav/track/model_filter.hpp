@@ -22,6 +22,10 @@ struct ModelFilterConfig {
   double box_half_width = 0.4;  ///< [m] half width of the data-filter box around a model (rownav)
   double init_min_distance = 0.3;  ///< [m] without a model: rows nearer are ignored (Malavazi 2018)
   double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
+  /// [-] once the row spacing is measured (centre to centre, accepted frames), the same window
+  /// reaches at least this fraction of it (issue 10: the paper's 3 m fit its vegetable beds; a
+  /// corridor row of a 5 m orchard stands up to ~4 m away, the next row a spacing farther)
+  double init_spacing_ratio = 0.9;
   double max_slope_change = 0.1;   ///< [-] |a - a_prev| above this: inconsistent (rownav)
   double max_offset_change = 0.25;  ///< [m] |b - b_prev| above this: inconsistent (rownav)
   /// [m] |b_l - b_r - mean width| above this: inconsistent (b_l - b_r: the width between the
@@ -44,6 +48,7 @@ struct ModelFilterConfig {
     v("box_half_width", s.box_half_width);
     v("init_min_distance", s.init_min_distance);
     v("init_max_distance", s.init_max_distance);
+    v("init_spacing_ratio", s.init_spacing_ratio);
     v("max_slope_change", s.max_slope_change);
     v("max_offset_change", s.max_offset_change);
     v("spacing_tolerance", s.spacing_tolerance);
@@ -76,10 +81,12 @@ class ModelFilterTracker : public TrackerBase {
 
  private:
   /// Data-filter box test of a detected row against side s (0 left, 1 right).
-  bool in_box(const core::RowLine& r, int s) const;
+  bool in_box(const core::RowLine& r, int s, double init_max) const;
   /// Consistency of a candidate with the followed model of side s and the history.
   bool consistent(const SlopeIntercept& c, int s) const;
   double mean_spacing() const;
+  /// [m] initialisation window's far edge (init_max_distance, or more with the spacing measured).
+  double init_max() const;
 
   ModelFilterConfig config_;
   bool have_[2] = {false, false};                     // left, right

@@ -72,6 +72,8 @@ class TrackerBase : public RowTracker {
   /// Fills rows, left, right and row_spacing (0: unknown, then the base's estimate from every
   /// row seen is used) of `out`; a row's centre_offset left NaN is filled by the base.
   virtual void describe(RowTracking& out) const = 0;
+  /// [m] row spacing centre to centre from the recent observations (0: none yet).
+  double measured_spacing() const { return spacing_.spacing(); }
   /// Last say on the output (e.g. a FIR filter); the default does nothing.
   virtual void finish(RowTracking& /*out*/) {}
 
