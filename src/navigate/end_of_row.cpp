@@ -103,9 +103,10 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   previous_count_ = r.box_points;
   // 001 eq. (25) / sec. 4 (n < 30 on the left and right sides); 003 sec. II-C for planar scans.
   // A sparse canopy (young shoots, 16 beams) can leave the box under the threshold mid-row: the
-  // count is overruled while both followed rows are tracked beyond the box (plants ahead).
+  // count is overruled while a followed row is tracked beyond the box (plants ahead): the rows
+  // end where they all end, a gap of missing trees in one row is no row end (issue 10).
   const std::optional<Extent> extent = followed_extent(tracking);
-  const bool rows_continue = extent && extent->nearest > c.box_x_max;
+  const bool rows_continue = extent && extent->farthest > c.box_x_max;
   const bool count_end =
       !rows_continue && (planar ? r.box_points < c.scan_point_threshold
                                 : n.left < c.point_threshold && n.right < c.point_threshold);

@@ -19,6 +19,7 @@ void NavigatorConfig::validate() const {
   core::check_positive(row_speed, "row_speed");
   core::check_positive(entry_speed, "entry_speed");
   core::check_non_negative(exit_distance, "exit_distance");
+  core::check_non_negative(exit_clearance, "exit_clearance");
   core::check_positive(perception_timeout, "perception_timeout");
   core::check_non_negative(stop_distance, "stop_distance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
@@ -39,6 +40,7 @@ Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, Turn
       order_(std::move(order)),
       changes_(corridor_changes(order_, first_turn)),
       end_box_near_(end_box_near),
+      exit_distance_(config.exit_distance),
       ends_(config.row_end_estimate) {
   config_.validate();
   if (order_.empty()) state_ = NavState::done;
@@ -108,7 +110,7 @@ std::optional<StateEffort> Navigator::effort() const {
       if (manoeuvre_) return StateEffort{manoeuvre_->planned_distance(), manoeuvre_->planned_time()};
       return std::nullopt;
     case NavState::entering: {
-      const double d = config_.entry_max_depth + config_.exit_distance;
+      const double d = config_.entry_max_depth + exit_distance_;
       return StateEffort{d, d / config_.entry_speed};
     }
     default:
@@ -177,17 +179,28 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   const auto& centre = ends_.centre();
   if (in.end_of_row.end_detected && centre) {
     state_ = NavState::exiting;
+    exit_distance_ = exit_distance(in);
     if (!ends_.end_arc()) {  // no row end seen: the detector's distance, else the box's near edge
       const double ahead = in.end_of_row.distance_to_end.value_or(end_box_near_);
       ends_.set_end_arc(centre->arc(in.T_odom_base.translation()) + ahead);
     }
     const double end = *ends_.end_arc();
-    const double left = end - centre->arc(in.T_odom_base.translation()) + config_.exit_distance;
+    const double left = end - centre->arc(in.T_odom_base.translation()) + exit_distance_;
     exit_effort_ = StateEffort{std::max(0.0, left), std::max(0.0, left) / config_.row_speed};
     out.events.push_back({in.stamp, NavEventKind::row_end, order_[leg_], centre->at(end),
                           "row end detected, " +
                               fmt(end - centre->arc(in.T_odom_base.translation())) + " m ahead"});
   }
+}
+
+double Navigator::exit_distance(const NavInput& in) const {
+  double canopy = 0.0;  // widest measured half width of the followed rows
+  for (const int i : {in.tracking.left, in.tracking.right}) {
+    if (i < 0 || i >= static_cast<int>(in.tracking.rows.size())) continue;
+    const double h = in.tracking.rows[static_cast<std::size_t>(i)].half_width;
+    if (std::isfinite(h)) canopy = std::max(canopy, h);
+  }
+  return std::max(config_.exit_distance, canopy + 0.5 * in.robot.width + config_.exit_clearance);
 }
 
 core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& T, double v) const {
@@ -200,7 +213,7 @@ core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& 
 void Navigator::exiting(const core::Pose2& T, NavOutput& out, double stamp) {
   // 003 sec. II-B: leave the row by a fixed distance measured by odometry.
   const core::Line2& centre = *ends_.centre();
-  if (centre.arc(T.translation()) < *ends_.end_arc() + config_.exit_distance) {
+  if (centre.arc(T.translation()) < *ends_.end_arc() + exit_distance_) {
     out.cmd = follow_line(centre, T, config_.row_speed);
     return;
   }

@@ -17,7 +17,7 @@ void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
   const core::Pose2 T_odom_turn(origin.x(), origin.y(), ends_.centre()->heading());
   const TurnPlan plan = choose_turn(config_.manoeuvre, change.shift, spacing, robot_.turn);
   manoeuvre_ = std::make_unique<HeadlandManoeuvre>(config_.turn, plan, T_odom_turn, change.shift,
-                                                   change.side, spacing, config_.exit_distance);
+                                                   change.side, spacing, exit_distance_);
   out.reset_tracking = true;
   out.reset_end_of_row = true;
   state_ = NavState::turning;
@@ -75,7 +75,7 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
   }
   out.cmd = follow_line(entry_seen_.value_or(line), T, config_.entry_speed);
   if (in == nullptr) return;
-  const double depth = line.arc(T.translation()) - config_.exit_distance;
+  const double depth = line.arc(T.translation()) - exit_distance_;
   const int to = order_[leg_ + 1];
   const bool seen =
       in->tracking.status == track::TrackStatus::tracking && in->observation.corridor.has_value();

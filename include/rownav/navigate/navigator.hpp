@@ -90,6 +90,11 @@ struct NavigatorConfig {
   double row_speed = 0.8;      ///< [m/s] in rows (003 sec. III: up to 1 m/s in the real vineyard)
   double entry_speed = 0.4;    ///< [m/s] entering a corridor after a turn
   double exit_distance = 1.2;  ///< [m] beyond the row ends, by odometry, before turning (003 II-B)
+  /// [m] the exit also reaches the followed rows' measured canopy half width (a tree crown's
+  /// radius past its last trunk) plus half the robot's width plus this clearance, so the turn
+  /// and the headland leg pass the row ends clear of the crowns (issue 10; vines: 0.25 m half
+  /// widths keep exit_distance)
+  double exit_clearance = 0.5;
   double perception_timeout = 0.5;  ///< [s] in a row without rows seen -> safe stop
   double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
   int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
@@ -108,6 +113,7 @@ struct NavigatorConfig {
     v("row_speed", s.row_speed);
     v("entry_speed", s.entry_speed);
     v("exit_distance", s.exit_distance);
+    v("exit_clearance", s.exit_clearance);
     v("perception_timeout", s.perception_timeout);
     v("stop_distance", s.stop_distance);
     v("obstacle_min_points", s.obstacle_min_points);
@@ -200,6 +206,8 @@ class Navigator {
   void start_turn(const core::Pose2& T, NavOutput& out, double stamp);
   void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
   bool obstacle_ahead(const NavInput& in) const;
+  /// [m] how far past the row end the exit drives (exit_distance, or the canopy's reach).
+  double exit_distance(const NavInput& in) const;
   core::Twist2 follow_line(const core::Line2& line, const core::Pose2& T, double v) const;
   NavOutput finish(NavOutput out);
 
@@ -207,6 +215,7 @@ class Navigator {
   std::vector<int> order_;
   std::vector<CorridorChange> changes_;
   double end_box_near_ = 0.0;
+  double exit_distance_ = 0.0;  // [m] this row's exit: exit_distance or the canopy's reach
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
