@@ -11,6 +11,8 @@ namespace rownav::map {
 namespace {
 
 constexpr std::size_t kN = kFilteredPlaces;
+/// [m] rounding slack when comparing accumulated travel with the step length
+constexpr double kTravelSlack = 1e-9;
 
 /// Normalises in place; false (and left unchanged) when the sum is not positive / finite.
 bool normalise(std::array<double, kN>& p) {
@@ -65,9 +67,9 @@ PlaceHmmResult PlaceHmm::update(double forward_distance,
                                 const std::array<double, kFilteredPlaces>* c_index) {
   PlaceHmmResult out;
   if (std::isfinite(forward_distance) && forward_distance > 0.0) travelled_ += forward_distance;
-  while (travelled_ >= config_.step_length && out.motion_steps < config_.max_steps_per_update) {
+  while (travelled_ + kTravelSlack >= config_.step_length && out.motion_steps < config_.max_steps_per_update) {
     predict_one_step();
-    travelled_ -= config_.step_length;
+    travelled_ = std::max(0.0, travelled_ - config_.step_length);
     ++out.motion_steps;
   }
   if (out.motion_steps == config_.max_steps_per_update) travelled_ = 0.0;

@@ -73,7 +73,9 @@ TEST(PlaceEstimator, BackAndForthBeforeAndAfterTheEntryMakeOneTransition) {
   EXPECT_EQ(est.map().transitions()[0].to, Place::lane);
   EXPECT_EQ(e.back().place, Place::lane);
   for (std::size_t i = 0; i < e.size(); ++i)
-    if (e[i].transition) EXPECT_GT(poses[i].x, -0.3);
+    if (e[i].transition) {
+      EXPECT_GT(poses[i].x, -0.3);
+    }
 }
 
 TEST(PlaceEstimator, GapsInBothRowsAreNotARowEnd) {
