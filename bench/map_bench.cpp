@@ -101,6 +101,9 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> nearest_end(const sim::FieldTruth& t
   return best;
 }
 
+bool g_verbose = false;  // 4th argument "v": every true and validated transition
+int g_debug_frames = 60;  // ... and the first frames whose filtered place is wrong
+
 Metrics run(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp, double fn) {
   const sim::Field field = sim::generate_field(f.config);
   const sim::FieldTruth truth(field);
@@ -141,11 +144,27 @@ Metrics run(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp,
     }
     labeller.set_frame(T, classes);
     labeller.label(pts, labels);
-    est_place.push_back(map::filtered_index(est.update(pts, labels, T, stamp).place));
+    const map::PlaceEstimate pe = est.update(pts, labels, T, stamp);
+    est_place.push_back(map::filtered_index(pe.place));
     true_place.push_back(place_index(truth.at(T, stamp, 0.0).place));
+    if (g_verbose && map::filtered_index(pe.filtered) != true_place.back() && g_debug_frames-- > 0)
+      std::printf("frame %zu (%.2f, %.2f) true %d filtered %d inst %d c %.2f %.2f %.2f rows %d\n",
+                  i, T.x, T.y, true_place.back(), map::filtered_index(pe.filtered),
+                  map::filtered_index(pe.instantaneous), pe.c_index[0], pe.c_index[1],
+                  pe.c_index[2], pe.rows);
     if (i > 0 && true_place[i] != true_place[i - 1]) {
       const auto [key, tangent] = nearest_end(truth, T.translation());
       truths.push_back({T.translation(), true_place[i], key, tangent});
+    }
+  }
+  if (g_verbose) {
+    for (const auto& t : truths) std::printf("true  -> %d at (%.2f, %.2f)\n", t.to, t.at.x(), t.at.y());
+    for (const auto& v : est.map().transitions()) {
+      const Eigen::Vector2d at = (poses.front() * v.T_field_base).translation();
+      const Eigen::Vector2d k = poses.front() * v.key.p;
+      std::printf("valid %s -> %s at (%.2f, %.2f) key (%.2f, %.2f)\n",
+                  std::string(rownav::core::enum_name(v.from)).c_str(),
+                  std::string(rownav::core::enum_name(v.to)).c_str(), at.x(), at.y(), k.x(), k.y());
     }
   }
   Metrics m;
@@ -192,6 +211,7 @@ int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 3;
   const double fp = argc > 2 ? std::atof(argv[2]) : 0.01;
   const double fn = argc > 3 ? std::atof(argv[3]) : 0.1;
+  g_verbose = argc > 4 && argv[4][0] == 'v';
   std::printf("| field | seed | frames acc. | DSR | true / detected / false | MDE [m] | Orth_E [m] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const auto& mk : {rownav::bench_map::field_b1, rownav::bench_map::field_v1}) {

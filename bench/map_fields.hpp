@@ -28,7 +28,7 @@ inline MapField field_b1(std::uint64_t seed) {
   f.config.terrain.roughness = 0.0;
   f.config.seed = seed;
   f.scanner_height = 0.15;
-  f.dbscan_eps = 0.35;
+  f.dbscan_eps = 0.5;
   return f;
 }
 

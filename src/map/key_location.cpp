@@ -80,24 +80,28 @@ void KeyLocationConfig::validate() const {
   core::check_non_negative(max_side_separation, "max_side_separation");
 }
 
+std::optional<double> side_lateral(const RowCluster& row, const core::Pose2& T,
+                                   double half_width, const KeyLocationConfig& c) {
+  const Eigen::Vector2d u = along(row, heading_of(T));
+  if (u.dot(heading_of(T)) < std::cos(c.side_max_angle_deg * kDegToRad)) return std::nullopt;
+  const double lateral = cross(u, row.line.point - T.translation());
+  if (std::abs(lateral) > c.max_lateral_ratio * 2.0 * half_width || lateral == 0.0)
+    return std::nullopt;
+  return lateral;
+}
+
 SideRows find_side_rows(const std::vector<RowCluster>& rows, const core::Pose2& T,
                         double half_width, const KeyLocationConfig& c) {
   SideRows out;
-  const Eigen::Vector2d h = heading_of(T);
-  const double max_lateral = c.max_lateral_ratio * 2.0 * half_width;
-  const double min_cos = std::cos(c.side_max_angle_deg * kDegToRad);
   for (const auto& row : rows) {
-    const Eigen::Vector2d u = along(row, h);
-    if (u.dot(h) < min_cos) continue;
-    // Signed distance of the row line from the robot, left positive.
-    const double lateral = cross(u, row.line.point - T.translation());
-    if (std::abs(lateral) > max_lateral || lateral == 0.0) continue;
-    if (lateral > 0.0 && (!out.left || lateral < out.left_lateral)) {
+    const auto lat = side_lateral(row, T, half_width, c);
+    if (!lat) continue;
+    if (*lat > 0.0 && (!out.left || *lat < out.left_lateral)) {
       out.left = &row;
-      out.left_lateral = lateral;
-    } else if (lateral < 0.0 && (!out.right || -lateral < out.right_lateral)) {
+      out.left_lateral = *lat;
+    } else if (*lat < 0.0 && (!out.right || -*lat < out.right_lateral)) {
       out.right = &row;
-      out.right_lateral = -lateral;
+      out.right_lateral = -*lat;
     }
   }
   return out;
@@ -134,6 +138,10 @@ KeyVerdict KeyLocator::check(const KeyLocation& k, const core::Pose2& T) const {
     if (std::abs(cross(h, d)) > config_.max_alignment) return KeyVerdict::misaligned;
   }
   const auto& prev = last(k.type);  // rule (iii)
+  if (prev && k.type == KeyType::entry && k.v.dot(prev->v) >= min_cos &&
+      std::abs(cross(prev->v, k.p - prev->p)) <= config_.max_alignment &&
+      (k.p - prev->p).dot(prev->v) > config_.same_radius)
+    return KeyVerdict::beyond_entry;  // rownav: the same lane's entry does not move forward
   if (prev && (k.p - prev->p).norm() <= config_.same_radius) {
     if (k.v.dot(prev->v) < min_cos) return KeyVerdict::misoriented;
     if (std::abs(cross(prev->v, k.p - prev->p)) > config_.max_alignment) return KeyVerdict::jump;

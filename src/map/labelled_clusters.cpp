@@ -43,13 +43,21 @@ bool fit_row(const std::vector<Eigen::Vector2f>& pts, RowCluster& row) {
 
 /// Emmi 2021: "evaluating whether two clusters belong to the same row".
 bool same_row(const RowCluster& a, const RowCluster& b, const LabelledClustersConfig& c) {
-  const double cos_angle = std::abs(a.line.direction.dot(b.line.direction));
-  if (cos_angle < std::cos(c.merge_angle_deg * kDegToRad)) return false;
-  if (std::abs(a.line.signed_distance(b.centroid)) > c.merge_offset) return false;
+  const bool a_short = a.arc_max - a.arc_min < c.short_length;
+  const bool b_short = b.arc_max - b.arc_min < c.short_length;
+  if (a_short && b_short) return false;  // both may join a longer row instead
+  if (b_short) return same_row(b, a, c);
+  // From here b is long; a short a is tested against b's line only.
+  if (!a_short) {
+    const double cos_angle = std::abs(a.line.direction.dot(b.line.direction));
+    if (cos_angle < std::cos(c.merge_angle_deg * kDegToRad)) return false;
+    if (std::abs(a.line.signed_distance(b.centroid)) > c.merge_offset) return false;
+  }
   if (std::abs(b.line.signed_distance(a.centroid)) > c.merge_offset) return false;
-  const double b_lo = std::min(a.line.arc(b.line.at(b.arc_min)), a.line.arc(b.line.at(b.arc_max)));
-  const double b_hi = std::max(a.line.arc(b.line.at(b.arc_min)), a.line.arc(b.line.at(b.arc_max)));
-  const double gap = std::max(b_lo - a.arc_max, a.arc_min - b_hi);
+  // Gap along b's line between the two extents.
+  const double a_lo = std::min(b.line.arc(a.line.at(a.arc_min)), b.line.arc(a.line.at(a.arc_max)));
+  const double a_hi = std::max(b.line.arc(a.line.at(a.arc_min)), b.line.arc(a.line.at(a.arc_max)));
+  const double gap = std::max(a_lo - b.arc_max, b.arc_min - a_hi);
   return gap <= c.merge_gap;
 }
 
@@ -74,6 +82,7 @@ void LabelledClustersConfig::validate() const {
   core::check_range(merge_angle_deg, 0.0, 90.0, "merge_angle_deg");
   core::check_non_negative(merge_offset, "merge_offset");
   core::check_non_negative(merge_gap, "merge_gap");
+  core::check_non_negative(short_length, "short_length");
 }
 
 LabelledClusters::LabelledClusters(const LabelledClustersConfig& config) : config_(config) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace rownav::map {
 
@@ -14,10 +15,23 @@ Eigen::Vector2d nearest_on_row(const RowCluster& row, const Eigen::Vector2d& q) 
 }
 
 /// A row's extent covers the robot's abscissa (within `margin`).
-bool beside(const RowCluster* row, const core::Pose2& T, double margin) {
-  if (!row) return false;
-  const double s = row->line.arc(T.translation());
-  return s >= row->arc_min - margin && s <= row->arc_max + margin;
+bool covers(const RowCluster& row, const core::Pose2& T, double margin) {
+  const double s = row.line.arc(T.translation());
+  return s >= row.arc_min - margin && s <= row.arc_max + margin;
+}
+
+/// The nearest row (or part of one) on the robot's left / right (sign) that covers its
+/// abscissa, with its distance; parts of a row that did not merge count too.
+std::pair<const RowCluster*, double> beside(const std::vector<RowCluster>& rows,
+                                            const core::Pose2& T, double half_width, double sign,
+                                            const KeyLocationConfig& kc, double margin) {
+  std::pair<const RowCluster*, double> best{nullptr, 0.0};
+  for (const auto& row : rows) {
+    const auto lat = side_lateral(row, T, half_width, kc);
+    if (!lat || *lat * sign <= 0.0 || !covers(row, T, margin)) continue;
+    if (!best.first || std::abs(*lat) < best.second) best = {&row, std::abs(*lat)};
+  }
+  return best;
 }
 
 std::vector<Eigen::Vector2d> positions_of(const std::vector<KeyLocation>& keys, KeyType t) {
@@ -83,13 +97,14 @@ PlaceIndices compute_place_indices(const std::vector<RowCluster>& rows, const co
   PlaceIndices out;
   out.p_index_entry = position_correlation(positions_of(valid_keys, KeyType::entry));
   out.p_index_exit = position_correlation(positions_of(valid_keys, KeyType::exit));
-  const SideRows sides = find_side_rows(rows, T, half_width, key_config);
-  out.left_beside = beside(sides.left, T, config.beside_margin);
-  out.right_beside = beside(sides.right, T, config.beside_margin);
-  const RowCluster* nearest = sides.left;
-  if (!nearest || (sides.right && sides.right_lateral < sides.left_lateral)) nearest = sides.right;
+  const auto left = beside(rows, T, half_width, 1.0, key_config, config.beside_margin);
+  const auto right = beside(rows, T, half_width, -1.0, key_config, config.beside_margin);
+  out.left_beside = left.first != nullptr;
+  out.right_beside = right.first != nullptr;
+  const RowCluster* nearest = left.first;
+  if (!nearest || (right.first && right.second < left.second)) nearest = right.first;
   double along_rows = 0.0;
-  if (nearest && (out.left_beside || out.right_beside)) {
+  if (nearest) {
     const Eigen::Vector2d h(std::cos(T.theta), std::sin(T.theta));
     out.a_index = std::abs(h.dot(nearest->line.direction));  // eq. (5) against the row
     out.cluster_idx = cluster_index(*nearest, T, config.projection_distance);

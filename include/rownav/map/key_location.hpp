@@ -77,12 +77,27 @@ struct SideRows {
   double right_lateral = 0.0;  ///< [m] to the right row (> 0)
 };
 
+/// [m] signed distance (left +) of a row's line from the robot; nullopt when the row is more
+/// oblique than side_max_angle_deg or farther than max_lateral_ratio * 2 d.
+std::optional<double> side_lateral(const RowCluster& row, const core::Pose2& T_local_base,
+                                   double half_width, const KeyLocationConfig& config);
+
 /// Finds the robot's left and right rows (nearest within max_lateral_ratio * 2 d).
 SideRows find_side_rows(const std::vector<RowCluster>& rows, const core::Pose2& T_local_base,
                         double half_width, const KeyLocationConfig& config);
 
 /// Why a candidate key location was rejected (or `valid`).
-enum class KeyVerdict : std::uint8_t { valid, behind, too_far, misoriented, misaligned, jump };
+/// `beyond_entry`: an entry further into the lane of the last valid entry (a lane has one
+/// start; a part of a row seen ahead is not it).
+enum class KeyVerdict : std::uint8_t {
+  valid,
+  behind,
+  too_far,
+  misoriented,
+  misaligned,
+  jump,
+  beyond_entry
+};
 
 /// Key location estimation over frames, in F_l. Stateful (d, the last valid key locations);
 /// never throws after construction.

@@ -31,6 +31,9 @@ struct LabelledClustersConfig {
   /// [m] ... and the gap between them along the line is at most this (Emmi 2021: "gaps can be
   /// found", a cluster is "a single crop row, or part of a row")
   double merge_gap = 2.5;
+  /// [m] a cluster shorter than this (one plant: its line's direction means nothing) joins a
+  /// longer row on the offset and gap tests alone (rownav)
+  double short_length = 0.6;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -43,6 +46,7 @@ struct LabelledClustersConfig {
     v("merge_angle_deg", s.merge_angle_deg);
     v("merge_offset", s.merge_offset);
     v("merge_gap", s.merge_gap);
+    v("short_length", s.short_length);
   }
   void validate() const;
 };
