@@ -21,7 +21,7 @@ struct PlaceHmmConfig {
   double step_length = kMotionStepLength;
   /// [-] eq. (8) likelihood floor: P(z | m) = floor + (1 - floor) * c_index_m, so that one
   /// contradicting frame cannot zero a state (rownav)
-  double observation_floor = 0.1;
+  double observation_floor = 0.25;
   /// [-] top two posteriors closer than this: the filtered state is unknown (eq. (9) margin)
   double min_margin = 0.05;
   int max_steps_per_update = 50;  ///< [steps] motion steps applied in one update at most
