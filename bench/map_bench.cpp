@@ -4,7 +4,7 @@
 // per-frame state accuracy against the true place (outside a band around the true transitions),
 // the transition detection success rate (DSR), the key locations' mean distance error (MDE) and
 // orthogonal error (Orth_E). Not a Google Benchmark: own main.
-//   build/map_bench [seeds] [false_positive_rate] [false_negative_rate]
+//   build/map_bench [seeds] [false_positive_rate] [false_negative_rate] [v: list transitions]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -104,7 +104,37 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> nearest_end(const sim::FieldTruth& t
 bool g_verbose = false;  // 4th argument "v": every true and validated transition
 int g_debug_frames = 60;  // ... and the first frames whose filtered place is wrong
 
-Metrics run(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp, double fn) {
+/// One mission: poses, true and validated places, true transitions, the estimator's map.
+struct Mission {
+  std::vector<Pose2> poses;
+  std::vector<int> true_place, est_place;
+  std::vector<TrueTransition> truths;
+  std::vector<map::MapTransition> validated;
+};
+
+/// Base-frame points and surface classes of one planar scan (flat ground, level scanner).
+void scan_points(const rownav::core::Scan2D& scan, const std::vector<sim::SurfaceClass>& beam,
+                 const Eigen::Vector3d& mount, std::vector<Eigen::Vector3f>& pts,
+                 std::vector<sim::SurfaceClass>& classes) {
+  pts.clear();
+  classes.clear();
+  for (std::size_t b = 0; b < scan.ranges.size(); ++b) {
+    if (!scan.valid(b)) continue;
+    const double a = scan.angle(b), r = scan.ranges[b];
+    pts.emplace_back(float(mount.x() + r * std::cos(a)), float(r * std::sin(a)), float(mount.z()));
+    classes.push_back(beam[b]);
+  }
+}
+
+map::PlaceEstimatorConfig estimator_config(const sim::Field& field, double eps) {
+  map::PlaceEstimatorConfig pc;
+  pc.key_locations.lane_width = field.row_spacing;
+  pc.key_locations.max_distance = field.headland_width;
+  pc.clusters.eps = eps;
+  return pc;
+}
+
+Mission simulate(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp, double fn) {
   const sim::Field field = sim::generate_field(f.config);
   const sim::FieldTruth truth(field);
   const sim::RayCaster world(field.mesh);
@@ -116,72 +146,68 @@ Metrics run(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp,
   tc.false_positive_rate = fp;
   tc.false_negative_rate = fn;
   sim::TruthLabeller labeller(tc, seed + 1);
-  map::PlaceEstimatorConfig pc;
-  pc.key_locations.lane_width = field.row_spacing;
-  pc.key_locations.max_distance = field.headland_width;
-  pc.clusters.eps = f.dbscan_eps;
-  map::PlaceEstimator est(pc);
-  const auto poses = serpentine(truth);
-  std::vector<TrueTransition> truths;
-  std::vector<int> true_place, est_place;
+  map::PlaceEstimator est(estimator_config(field, f.dbscan_eps));
+  Mission m;
+  m.poses = serpentine(truth);
   std::vector<Eigen::Vector3f> pts;
-  std::vector<sim::SurfaceClass> classes;
+  std::vector<sim::SurfaceClass> classes, beam;
   std::vector<map::PointLabel> labels;
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const Pose2& T = poses[i];
+  for (std::size_t i = 0; i < m.poses.size(); ++i) {
+    const Pose2& T = m.poses[i];
     const double stamp = 0.1 * static_cast<double>(i);
     const Eigen::Isometry3d iso = T.to_isometry();
-    std::vector<sim::SurfaceClass> beam;
-    const auto scan = lidar.scan(world, [&](double) { return iso; }, stamp, &beam);
-    pts.clear();
-    classes.clear();
-    for (std::size_t b = 0; b < scan.ranges.size(); ++b) {
-      if (!scan.valid(b)) continue;
-      const double a = scan.angle(b), r = scan.ranges[b];
-      pts.emplace_back(float(lc.mount_xyz.x() + r * std::cos(a)), float(r * std::sin(a)),
-                       float(lc.mount_xyz.z()));
-      classes.push_back(beam[b]);
-    }
+    scan_points(lidar.scan(world, [&](double) { return iso; }, stamp, &beam), beam, lc.mount_xyz,
+                pts, classes);
     labeller.set_frame(T, classes);
     labeller.label(pts, labels);
     const map::PlaceEstimate pe = est.update(pts, labels, T, stamp);
-    est_place.push_back(map::filtered_index(pe.place));
-    true_place.push_back(place_index(truth.at(T, stamp, 0.0).place));
-    if (g_verbose && map::filtered_index(pe.filtered) != true_place.back() && g_debug_frames-- > 0)
+    m.est_place.push_back(map::filtered_index(pe.place));
+    m.true_place.push_back(place_index(truth.at(T, stamp, 0.0).place));
+    if (g_verbose && map::filtered_index(pe.filtered) != m.true_place.back() && g_debug_frames-- > 0)
       std::printf("frame %zu (%.2f, %.2f) true %d filtered %d inst %d c %.2f %.2f %.2f rows %d\n",
-                  i, T.x, T.y, true_place.back(), map::filtered_index(pe.filtered),
+                  i, T.x, T.y, m.true_place.back(), map::filtered_index(pe.filtered),
                   map::filtered_index(pe.instantaneous), pe.c_index[0], pe.c_index[1],
                   pe.c_index[2], pe.rows);
-    if (i > 0 && true_place[i] != true_place[i - 1]) {
+    if (i > 0 && m.true_place[i] != m.true_place[i - 1]) {
       const auto [key, tangent] = nearest_end(truth, T.translation());
-      truths.push_back({T.translation(), true_place[i], key, tangent});
+      m.truths.push_back({T.translation(), m.true_place[i], key, tangent});
     }
   }
-  if (g_verbose) {
-    for (const auto& t : truths) std::printf("true  -> %d at (%.2f, %.2f)\n", t.to, t.at.x(), t.at.y());
-    for (const auto& v : est.map().transitions()) {
-      const Eigen::Vector2d at = (poses.front() * v.T_field_base).translation();
-      const Eigen::Vector2d k = poses.front() * v.key.p;
-      std::printf("valid %s -> %s at (%.2f, %.2f) key (%.2f, %.2f)\n",
-                  std::string(rownav::core::enum_name(v.from)).c_str(),
-                  std::string(rownav::core::enum_name(v.to)).c_str(), at.x(), at.y(), k.x(), k.y());
-    }
+  m.validated = est.map().transitions();
+  return m;
+}
+
+void print_transitions(const Mission& m) {
+  for (const auto& t : m.truths) std::printf("true  -> %d at (%.2f, %.2f)\n", t.to, t.at.x(), t.at.y());
+  for (const auto& v : m.validated) {
+    const Eigen::Vector2d at = (m.poses.front() * v.T_field_base).translation();
+    const Eigen::Vector2d k = m.poses.front() * v.key.p;
+    std::printf("valid %s -> %s at (%.2f, %.2f) key (%.2f, %.2f)\n",
+                std::string(rownav::core::enum_name(v.from)).c_str(),
+                std::string(rownav::core::enum_name(v.to)).c_str(), at.x(), at.y(), k.x(), k.y());
   }
-  Metrics m;
+}
+
+double state_accuracy(const Mission& m) {
   int n = 0, ok = 0;
-  for (std::size_t i = 0; i < poses.size(); ++i) {
+  for (std::size_t i = 0; i < m.poses.size(); ++i) {
     bool near = false;
-    for (const auto& t : truths) near = near || (poses[i].translation() - t.at).norm() < kBand;
+    for (const auto& t : m.truths) near = near || (m.poses[i].translation() - t.at).norm() < kBand;
     if (near) continue;
     ++n;
-    ok += est_place[i] == true_place[i] ? 1 : 0;
+    ok += m.est_place[i] == m.true_place[i] ? 1 : 0;
   }
-  m.accuracy = n ? double(ok) / n : 0.0;
-  const Pose2 T_world_field = poses.front();
-  std::vector<bool> used(est.map().transitions().size(), false);
-  for (const auto& t : truths) {
+  return n ? double(ok) / n : 0.0;
+}
+
+Metrics score(const Mission& mission) {
+  Metrics m;
+  m.accuracy = state_accuracy(mission);
+  const Pose2 T_world_field = mission.poses.front();  // F_f: the first pose
+  std::vector<bool> used(mission.validated.size(), false);
+  for (const auto& t : mission.truths) {
     for (std::size_t j = 0; j < used.size(); ++j) {
-      const auto& v = est.map().transitions()[j];
+      const auto& v = mission.validated[j];
       const Eigen::Vector2d at = (T_world_field * v.T_field_base).translation();
       if (used[j] || map::filtered_index(v.to) != t.to || (at - t.at).norm() > kMatchRadius)
         continue;
@@ -193,11 +219,17 @@ Metrics run(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp,
       break;
     }
   }
-  m.true_transitions = static_cast<int>(truths.size());
+  m.true_transitions = static_cast<int>(mission.truths.size());
   m.false_transitions = static_cast<int>(std::count(used.begin(), used.end(), false));
-  m.dsr = truths.empty() ? 0.0 : double(m.detected) / double(truths.size());
+  m.dsr = mission.truths.empty() ? 0.0 : double(m.detected) / double(mission.truths.size());
   if (m.detected) m.mde /= m.detected, m.orth /= m.detected;
   return m;
+}
+
+Metrics run(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp, double fn) {
+  const Mission m = simulate(f, seed, fp, fn);
+  if (g_verbose) print_transitions(m);
+  return score(m);
 }
 
 double median(std::vector<double> v) {
