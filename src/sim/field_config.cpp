@@ -54,6 +54,7 @@ void LayoutConfig::validate() const {
     core::check_range(origin_lon_deg, -180.0, 180.0, "origin_lon_deg");
   }
   core::validate_nested(limits, "limits");
+  core::validate_nested(terrain_transform, "terrain_transform");
 }
 
 void FieldConfig::validate() const {
@@ -152,6 +153,7 @@ Field dress_layout(const RowLayout& layout, const FieldConfig& config, const Tri
   f.kind = FieldKind::layout;
   f.headland_width = v.headland_width;
   f.terrain = Terrain(config.terrain);
+  if (terrain_mesh != nullptr) f.terrain.drape(*terrain_mesh);  // plants stand on the mesh
   const double spacing = estimate_row_spacing(layout);
   f.row_spacing = spacing > 0.0 ? spacing : v.row_spacing;
   for (std::size_t i = 0; i < layout.rows.size(); ++i)

@@ -7,9 +7,7 @@
 #include "rownav/sim/row_dressing.hpp"
 
 namespace rownav::sim {
-namespace {
 
-/// Adds one tree at ground point `b`; returns its top above the ground.
 double add_tree(TriangleMesh& mesh, const Eigen::Vector3f& b, const OrchardConfig& c,
                 std::mt19937_64& rng) {
   using V3 = Eigen::Vector3f;
@@ -35,8 +33,6 @@ double add_tree(TriangleMesh& mesh, const Eigen::Vector3f& b, const OrchardConfi
   }
   return top;
 }
-
-}  // namespace
 
 void OrchardConfig::validate() const {
   core::check_range(rows, 1, 1000, "rows");

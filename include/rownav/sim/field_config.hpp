@@ -8,6 +8,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/sim/field.hpp"
+#include "rownav/sim/mesh_transform.hpp"
 #include "rownav/sim/orchard.hpp"
 #include "rownav/sim/row_crop.hpp"
 #include "rownav/sim/terrain.hpp"
@@ -55,8 +56,10 @@ struct LayoutConfig {
   std::string file;               ///< CSV or GeoJSON layout, relative to the config file
   std::string instance_mesh;      ///< optional vine-row mesh instanced along rows (replaces vines)
   double instance_spacing = 5.1;  ///< [m] distance between instances along a row
-  std::string terrain_mesh;       ///< optional whole terrain / field mesh (world frame, labelled
-                                  ///< ground), replaces the procedural ground
+  std::string terrain_mesh;       ///< optional whole terrain / field mesh (labelled ground),
+                                  ///< replaces the procedural ground; the robot, plants and
+                                  ///< posts stand on it (Terrain::drape)
+  MeshTransform terrain_transform;  ///< places terrain_mesh in the layout frame (default: none)
   std::vector<std::string> blocks;  ///< block names to keep (empty = all)
   double origin_lat_deg =
       std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
@@ -70,6 +73,7 @@ struct LayoutConfig {
     v("instance_mesh", s.instance_mesh);
     v("instance_spacing", s.instance_spacing);
     v("terrain_mesh", s.terrain_mesh);
+    v("terrain_transform", s.terrain_transform);
     v("blocks", s.blocks);
     v("origin_lat_deg", s.origin_lat_deg);
     v("origin_lon_deg", s.origin_lon_deg);

@@ -47,6 +47,13 @@ struct OrchardConfig {
   void validate() const;
 };
 
+/// Adds one tree standing at ground point `base`: an 8-sided trunk (trunk_diameter) up into a
+/// crown of 6-10 jittered clumps (crown_diameter x crown_height, scaled per tree by
+/// size_variation) above trunk_height. The orchard generator and imported layouts use it.
+/// @return [m] top of the tree above the ground
+double add_tree(TriangleMesh& mesh, const Eigen::Vector3f& base, const OrchardConfig& config,
+                std::mt19937_64& rng);
+
 /// Generates an orchard (trees kind tree; trunk + 6-10 crown clumps each). Deterministic in seed.
 /// @throws std::invalid_argument when a config is invalid (naming the field)
 Field generate_orchard(const OrchardConfig& config, const TerrainConfig& terrain,
