@@ -1,9 +1,12 @@
 #pragma once
 /// @file field_config.hpp One config for any field: procedural vineyard / orchard / row crop, or
 /// an imported layout dressed with vines. Imports need files: see io::build_field.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
@@ -49,6 +52,13 @@ struct LayoutLimits {
   void validate() const;
 };
 
+/// What dress_layout builds on an imported layout.
+enum class LayoutDressing : std::uint8_t {
+  plants,  ///< vines along the rows (or the listed plants), posts, wires, weeds, ground
+  none,    ///< nothing: the meshes are the whole field (a photogrammetric mesh); the layout's
+           ///< rows and plants are the ground truth only
+};
+
 /// An imported row layout (GeoJSON / CSV) and optional meshes. Rows are dressed with
 /// FieldConfig::vineyard (its rows, row_length, row_spacing and curvature fields are unused;
 /// the row spacing is estimated from the layout).
@@ -60,6 +70,7 @@ struct LayoutConfig {
                                   ///< replaces the procedural ground; the robot, plants and
                                   ///< posts stand on it (Terrain::drape)
   MeshTransform terrain_transform;  ///< places terrain_mesh in the layout frame (default: none)
+  LayoutDressing dressing = LayoutDressing::plants;  ///< none: leave the meshes undressed
   std::vector<std::string> blocks;  ///< block names to keep (empty = all)
   double origin_lat_deg =
       std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
@@ -74,6 +85,7 @@ struct LayoutConfig {
     v("instance_spacing", s.instance_spacing);
     v("terrain_mesh", s.terrain_mesh);
     v("terrain_transform", s.terrain_transform);
+    v("dressing", s.dressing);
     v("blocks", s.blocks);
     v("origin_lat_deg", s.origin_lat_deg);
     v("origin_lon_deg", s.origin_lon_deg);
@@ -123,10 +135,20 @@ double estimate_row_spacing(const RowLayout& layout);
 
 /// Builds a field from an ordered layout (see order_layout_rows): vines every
 /// config.vineyard.plant_spacing unless `instance` is given (then instanced every
-/// config.layout.instance_spacing) or the layout lists explicit plants; posts, wires, weeds;
-/// the ground from `terrain_mesh` if given, else from config.terrain.
+/// config.layout.instance_spacing) or the layout lists explicit plants (vines and posts dressed
+/// with config.vineyard, trees with config.orchard, crop plants with config.row_crop, each
+/// with its own sizes from layout.shapes); posts, wires, weeds; the ground from `terrain_mesh`
+/// if given, else from config.terrain. With config.layout.dressing none only the meshes and the
+/// listed plants (as ground truth) are kept.
 Field dress_layout(const RowLayout& layout, const FieldConfig& config,
                    const TriangleMesh* instance = nullptr,
                    const TriangleMesh* terrain_mesh = nullptr);
 
 }  // namespace rownav::sim
+
+template <>
+struct rownav::core::EnumNames<rownav::sim::LayoutDressing> {
+  using E = rownav::sim::LayoutDressing;
+  static constexpr std::array<std::pair<E, std::string_view>, 2> values{
+      {{E::plants, "plants"}, {E::none, "none"}}};
+};
