@@ -67,6 +67,7 @@ void LayoutConfig::validate() const {
   }
   core::validate_nested(limits, "limits");
   core::validate_nested(terrain_transform, "terrain_transform");
+  core::validate_nested(terrain_labels, "terrain_labels");
 }
 
 void FieldConfig::validate() const {

@@ -2,6 +2,7 @@
 // LiDAR sees that ground where it is; the mesh is placed by the field file's terrain_transform.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -50,7 +51,8 @@ struct Scene {
   }
 };
 
-sim::Field build(const Scene& s, const std::string& name) {
+sim::Field build(const Scene& s, const std::string& name,
+                 const sim::MeshLabelConfig& labels = {}) {
   const fs::path dir = fs::path(::testing::TempDir()) / ("rownav_ride_" + name);
   fs::create_directories(dir);
   write_grid_obj(dir / "ground.obj", s.mesh_surface, -60.0, 60.0, 0.5);
@@ -61,6 +63,7 @@ sim::Field build(const Scene& s, const std::string& name) {
   c.layout.file = "rows.csv";
   c.layout.terrain_mesh = "ground.obj";
   c.layout.terrain_transform = s.t;
+  c.layout.terrain_labels = labels;
   return build_field(c, dir);
 }
 
@@ -78,6 +81,10 @@ Scene bumpy() {
     return 0.05 * x + 0.1 * std::sin(x / 3.0) * std::cos(y / 4.0);
   };
   return s;
+}
+
+std::size_t count_label(const sim::Field& f, sim::SurfaceClass c) {
+  return static_cast<std::size_t>(std::count(f.mesh.labels.begin(), f.mesh.labels.end(), c));
 }
 
 /// Roll and pitch (ZYX, yaw theta) give a base z axis along the analytic normal.
@@ -117,6 +124,28 @@ TEST(TerrainMeshRide, BumpyMeshIsDrivenOnNotUnder) {
     EXPECT_NEAR(sim.ground_truth().z, s.height(pose.x, pose.y), 0.01) << x;
     expect_on_surface(sim.ground_truth(), pose.theta, s.normal(pose.x, pose.y), 0.02);
   }
+}
+
+TEST(TerrainMeshRide, HeightRuleSeparatesCanopyFromTheGroundRidden) {
+  // A height-map mesh: gentle bumps plus a 1.5 m hedge 0.8 m wide along y = 2.5, one surface.
+  Scene s;
+  s.mesh_surface = [](double x, double y) {
+    return 0.02 * std::sin(x) + (std::abs(y - 2.5) < 0.4 && x > 0 && x < 20 ? 1.5 : 0.0);
+  };
+  sim::MeshLabelConfig labels;
+  const core::Pose2 on_hedge{10.0, 2.5, 0.0};
+  {  // all ground: the robot rides up the hedge (a ridge on the 0.5 m grid)
+    const sim::Field f = build(s, "hedge_ground", labels);
+    const sim::Simulator sim(f, sim::RobotConfig{}, sim::SimConfig{}, on_hedge);
+    EXPECT_GT(sim.ground_truth().z, 0.3);
+  }
+  labels.rule = sim::MeshLabelRule::height;
+  const sim::Field f = build(s, "hedge_height", labels);
+  EXPECT_GT(count_label(f, sim::SurfaceClass::canopy), 50u);
+  const sim::Simulator sim(f, sim::RobotConfig{}, sim::SimConfig{}, on_hedge);
+  EXPECT_NEAR(sim.ground_truth().z, 0.0, 0.05);  // the ground under it, not the canopy
+  const sim::Simulator lane(f, sim::RobotConfig{}, sim::SimConfig{}, {10.0, 1.25, 0.0});
+  EXPECT_NEAR(lane.ground_truth().z, s.height(10.0, 1.25), 0.01);
 }
 
 struct Clouds : sim::SimSink {

@@ -11,6 +11,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/sim/field.hpp"
+#include "rownav/sim/mesh_labels.hpp"
 #include "rownav/sim/mesh_transform.hpp"
 #include "rownav/sim/orchard.hpp"
 #include "rownav/sim/row_crop.hpp"
@@ -71,6 +72,7 @@ struct LayoutConfig {
                                   ///< posts stand on it (Terrain::drape)
   MeshTransform terrain_transform;  ///< places terrain_mesh in the layout frame (default: none)
   LayoutDressing dressing = LayoutDressing::plants;  ///< none: leave the meshes undressed
+  MeshLabelConfig terrain_labels;  ///< labels terrain_mesh parts (default: all ground)
   std::vector<std::string> blocks;  ///< block names to keep (empty = all)
   double origin_lat_deg =
       std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
@@ -86,6 +88,7 @@ struct LayoutConfig {
     v("terrain_mesh", s.terrain_mesh);
     v("terrain_transform", s.terrain_transform);
     v("dressing", s.dressing);
+    v("terrain_labels", s.terrain_labels);
     v("blocks", s.blocks);
     v("origin_lat_deg", s.origin_lat_deg);
     v("origin_lon_deg", s.origin_lon_deg);
