@@ -12,5 +12,6 @@ void add_detect_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_track_command(CLI::App& app);
+void add_zoo_command(CLI::App& app);
 
 }  // namespace rownav::app

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   rownav::app::add_run_command(app);
   rownav::app::add_bench_command(app);
   rownav::app::add_track_command(app);
+  rownav::app::add_zoo_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

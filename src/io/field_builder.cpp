@@ -36,8 +36,11 @@ sim::Field build_field(const sim::FieldConfig& config, const std::filesystem::pa
   std::optional<sim::TriangleMesh> instance, terrain;
   if (!lc.instance_mesh.empty())
     instance = read_mesh(resolve(lc.instance_mesh, base_dir), sim::SurfaceClass::canopy);
-  if (!lc.terrain_mesh.empty())
+  if (!lc.terrain_mesh.empty()) {
     terrain = read_mesh(resolve(lc.terrain_mesh, base_dir), sim::SurfaceClass::ground);
+    sim::transform_mesh(*terrain, lc.terrain_transform);
+    sim::label_mesh(*terrain, lc.terrain_labels);
+  }
   return sim::dress_layout(layout, config, instance ? &*instance : nullptr,
                            terrain ? &*terrain : nullptr);
 }

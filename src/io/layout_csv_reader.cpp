@@ -1,5 +1,6 @@
 // CSV layouts (format in layout_reader.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -42,9 +43,31 @@ double csv_number(const std::string& cell, const std::string& column, const std:
 /// Column indices of a CSV header.
 struct CsvColumns {
   int row = -1, x = -1, y = -1, kind = -1, block = -1;
+  std::array<int, detail::kShapeKeys.size()> shape{-1, -1, -1, -1, -1, -1};  // optional sizes
   bool geographic = false;
   std::size_t count = 0;
 };
+
+/// Records `name` as a PlantShape column; false when it is none.
+bool shape_column(CsvColumns& c, const std::string& name, int idx) {
+  for (std::size_t k = 0; k < detail::kShapeKeys.size(); ++k)
+    if (name == detail::kShapeKeys[k].first) return c.shape[k] = idx, true;
+  return false;
+}
+
+/// The sizes of a plant line: empty cells stay NaN, others are positive numbers [m].
+sim::PlantShape csv_shape(const CsvColumns& c, const std::vector<std::string>& cells,
+                          const std::string& file, const std::string& where) {
+  sim::PlantShape shape;
+  for (std::size_t k = 0; k < detail::kShapeKeys.size(); ++k) {
+    if (c.shape[k] < 0 || cells[static_cast<std::size_t>(c.shape[k])].empty()) continue;
+    const char* name = detail::kShapeKeys[k].first;
+    const double v = csv_number(cells[static_cast<std::size_t>(c.shape[k])], name, file, where);
+    if (v <= 0.0) throw InputError(file, where, std::string(name) + ": must be > 0 [m]");
+    shape.*detail::kShapeKeys[k].second = v;
+  }
+  return shape;
+}
 
 CsvColumns csv_columns(const std::vector<std::string>& header, const std::string& file,
                        const std::string& where) {
@@ -68,7 +91,7 @@ CsvColumns csv_columns(const std::vector<std::string>& header, const std::string
       c.kind = idx;
     else if (h == "block")
       c.block = idx;
-    else
+    else if (!shape_column(c, h, idx))
       throw InputError(file, where, "unknown column " + quote_for_message(h));
   }
   if (lon >= 0 && lat >= 0 && c.x < 0 && c.y < 0) c.geographic = true, c.x = lon, c.y = lat;
@@ -105,7 +128,7 @@ void csv_line(RawLayout& raw, const CsvColumns& c, const std::vector<std::string
     it->points.push_back(p);
     it->point_wheres.push_back(where);
   } else if (detail::plant_kind(kind, pk)) {
-    raw.add_plant({p, pk, label, where}, file);
+    raw.add_plant({p, pk, label, where, csv_shape(c, cells, file, where)}, file);
   } else {
     throw InputError(file, where,
                      "kind: unknown " + quote_for_message(kind) +

@@ -2,7 +2,9 @@
 // Private to rownav_io: a layout as read from GeoJSON or CSV, before it is checked against
 // sim::LayoutLimits and converted to the local frame (layout_reader.cpp, layout_csv_reader.cpp).
 #include <Eigen/Core>
+#include <array>
 #include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -23,7 +25,17 @@ struct RawPlant {
   sim::PlantKind kind;
   std::string row_label;  // CSV: the row it belongs to; GeoJSON: empty (nearest row)
   std::string where;
+  sim::PlantShape shape = {};  // sizes given in the file (NaN: not given)
 };
+
+/// The PlantShape members by column / property name, for both readers.
+inline constexpr std::array<std::pair<const char*, double sim::PlantShape::*>, 6> kShapeKeys{{
+    {"trunk_diameter", &sim::PlantShape::trunk_diameter},
+    {"trunk_height", &sim::PlantShape::trunk_height},
+    {"crown_diameter", &sim::PlantShape::crown_diameter},
+    {"crown_height", &sim::PlantShape::crown_height},
+    {"height", &sim::PlantShape::height},
+    {"width", &sim::PlantShape::width}}};
 
 struct RawLayout {
   std::vector<RawRow> rows;

@@ -139,6 +139,7 @@ sim::RowLayout finish_layout(RawLayout raw, const std::filesystem::path& file,
   for (auto& [raw_plant, plant] : plants) {
     if (raw_plant->row_label.empty()) plant.row = nearest_row(out, plant.position);
     out.plants.push_back(plant);
+    out.shapes.push_back(raw_plant->shape);
   }
   return out;
 }
@@ -182,6 +183,20 @@ std::string string_property(const json& props, const char* key, const std::strin
   return v.is_string() ? v.get<std::string>() : v.dump();
 }
 
+/// The sizes among a Point's properties (detail::kShapeKeys): positive finite numbers [m].
+sim::PlantShape plant_shape(const json& props, const std::string& file, const std::string& where) {
+  sim::PlantShape shape;
+  if (!props.is_object()) return shape;
+  for (const auto& [key, member] : detail::kShapeKeys) {
+    if (!props.contains(key) || props[key].is_null()) continue;
+    const json& v = props[key];
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() <= 0.0)
+      throw InputError(file, where, std::string("properties.") + key + ": expected a positive number [m]");
+    shape.*member = v.get<double>();
+  }
+  return shape;
+}
+
 void read_feature(RawLayout& raw, const json& f, const std::string& file,
                   const std::string& where) {
   if (!f.is_object()) throw InputError(file, where, "feature is not an object");
@@ -202,7 +217,9 @@ void read_feature(RawLayout& raw, const json& f, const std::string& file,
   } else if (type == "Point") {
     sim::PlantKind kind;
     if (detail::plant_kind(string_property(props, "kind", file, where), kind))
-      raw.add_plant({position(g["coordinates"], file, where), kind, "", where}, file);
+      raw.add_plant({position(g["coordinates"], file, where), kind, "", where,
+                     plant_shape(props, file, where)},
+                    file);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "rownav/sim/layout_plants.hpp"
 #include "rownav/sim/plant_geometry.hpp"
 #include "rownav/sim/row_dressing.hpp"
 
@@ -32,6 +33,17 @@ std::vector<std::vector<std::size_t>> rows_by_block(const RowLayout& layout) {
   return out;
 }
 
+/// Plants, posts, wires and weeds of a layout (dressing plants).
+void dress_plants(Field& f, const RowLayout& layout, const FieldConfig& config,
+                  const TriangleMesh* instance, std::mt19937_64& rng) {
+  const VineyardConfig& v = config.vineyard;
+  if (layout.plants.empty()) place_vines(f, v, rng);
+  build_vine_geometry(f, v, rng, instance == nullptr);
+  build_layout_plants(f, layout.shapes, config.orchard, config.row_crop, rng);
+  if (instance != nullptr) instance_along_rows(f, *instance, config.layout.instance_spacing);
+  scatter_weeds(f, v.weeds, f.row_spacing - v.canopy_width, rng);
+}
+
 }  // namespace
 
 void LayoutLimits::validate() const {
@@ -54,6 +66,8 @@ void LayoutConfig::validate() const {
     core::check_range(origin_lon_deg, -180.0, 180.0, "origin_lon_deg");
   }
   core::validate_nested(limits, "limits");
+  core::validate_nested(terrain_transform, "terrain_transform");
+  core::validate_nested(terrain_labels, "terrain_labels");
 }
 
 void FieldConfig::validate() const {
@@ -71,6 +85,8 @@ void FieldConfig::validate() const {
     case FieldKind::layout:
       core::validate_nested(layout, "layout");
       core::validate_nested(vineyard, "vineyard");
+      core::validate_nested(orchard, "orchard");
+      core::validate_nested(row_crop, "row_crop");
       break;
   }
   core::validate_nested(terrain, "terrain");
@@ -152,18 +168,15 @@ Field dress_layout(const RowLayout& layout, const FieldConfig& config, const Tri
   f.kind = FieldKind::layout;
   f.headland_width = v.headland_width;
   f.terrain = Terrain(config.terrain);
+  if (terrain_mesh != nullptr) f.terrain.drape(*terrain_mesh);  // plants stand on the mesh
   const double spacing = estimate_row_spacing(layout);
   f.row_spacing = spacing > 0.0 ? spacing : v.row_spacing;
   for (std::size_t i = 0; i < layout.rows.size(); ++i)
     f.rows.push_back({static_cast<int>(i), layout.rows[i].block, layout.rows[i].polyline,
                       0.5 * v.canopy_width, v.canopy_top});
-  if (layout.plants.empty())
-    place_vines(f, v, rng);
-  else
-    f.plants = layout.plants;
-  build_vine_geometry(f, v, rng, instance == nullptr);
-  if (instance != nullptr) instance_along_rows(f, *instance, config.layout.instance_spacing);
-  scatter_weeds(f, v.weeds, f.row_spacing - v.canopy_width, rng);
+  if (!layout.plants.empty()) f.plants = layout.plants;
+  apply_plant_shapes(f, layout.shapes);
+  if (config.layout.dressing == LayoutDressing::plants) dress_plants(f, layout, config, instance, rng);
   if (terrain_mesh != nullptr)
     f.mesh.append(*terrain_mesh);
   else

@@ -67,6 +67,13 @@ CropPreset crop_preset(CropType crop) {
   return {0.6, 0.15, 0.75, 0.5, 0.03};
 }
 
+void add_crop_plant(TriangleMesh& mesh, const Eigen::Vector3f& base, CropType crop, float height,
+                    float width, std::mt19937_64& rng) {
+  if (crop == CropType::maize) add_maize(mesh, base, height, width, rng);
+  if (crop == CropType::cabbage) add_cabbage(mesh, base, height, width, rng);
+  if (crop == CropType::leek) add_leek(mesh, base, height, width, rng);
+}
+
 CropPreset RowCropConfig::resolved() const {
   CropPreset p = crop_preset(crop);
   if (plant_height > 0.0) p.plant_height = plant_height;
@@ -118,9 +125,7 @@ Field generate_row_crop(const RowCropConfig& config, const TerrainConfig& terrai
                  static_cast<float>(field.terrain.height(q.x(), q.y())));
       const auto h = static_cast<float>(p.plant_height * scale);
       const auto w = static_cast<float>(p.plant_width * scale);
-      if (config.crop == CropType::maize) add_maize(field.mesh, b, h, w, rng);
-      if (config.crop == CropType::cabbage) add_cabbage(field.mesh, b, h, w, rng);
-      if (config.crop == CropType::leek) add_leek(field.mesh, b, h, w, rng);
+      add_crop_plant(field.mesh, b, config.crop, h, w, rng);
       field.plants.push_back({q, 0.5 * p.crush_diameter * scale, h, row.id, PlantKind::crop});
     }
   }

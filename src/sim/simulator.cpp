@@ -7,21 +7,6 @@ namespace rownav::sim {
 
 namespace {
 
-// Pose of a base resting on the terrain: z from the height field, roll / pitch from the normal.
-Eigen::Isometry3d on_terrain(const Terrain& terrain, const core::Pose2& p) {
-  const Eigen::Vector3d n = terrain.normal(p.x, p.y);
-  const Eigen::Vector3d heading(std::cos(p.theta), std::sin(p.theta), 0.0);
-  const Eigen::Vector3d x = (heading - heading.dot(n) * n).normalized();
-  Eigen::Matrix3d R;
-  R.col(0) = x;
-  R.col(1) = n.cross(x);
-  R.col(2) = n;
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = R;
-  T.translation() = Eigen::Vector3d(p.x, p.y, terrain.height(p.x, p.y));
-  return T;
-}
-
 Eigen::Isometry3d lerp(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::Quaterniond(a.linear())
@@ -42,6 +27,7 @@ void SimConfig::validate() const {
   core::check_range(ground_truth_rate_hz, 0.1, physics_rate_hz, "ground_truth_rate_hz");
   core::check_positive(truth_reach, "truth_reach");
   core::validate_nested(faults, "faults");
+  core::validate_nested(ground_contact, "ground_contact");
 }
 
 Simulator::Simulator(const Field& field, const RobotConfig& robot, const SimConfig& config,
@@ -69,7 +55,7 @@ Simulator::Simulator(const Field& field, const RobotConfig& robot, const SimConf
 }
 
 Eigen::Isometry3d Simulator::pose3d(const core::Pose2& T_world_base) const {
-  return on_terrain(field_.terrain, T_world_base);
+  return rest_on_ground(field_.terrain, robot_.config(), T_world_base, config_.ground_contact);
 }
 
 Eigen::Isometry3d Simulator::pose_at(double t) const {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "rownav/core/angle.hpp"
+#include "rownav/sim/ray_caster.hpp"
 
 namespace rownav::sim {
 namespace {
@@ -14,6 +15,19 @@ namespace {
 // components of amplitude a the height std-dev is a * sqrt(K / 2).
 constexpr int kWaves = 12;
 constexpr int kStride = 4;  // kx, ky, phase, amplitude
+// [m] downward rays start this far above the draped mesh's top and reach as far below its
+// bottom: any margin > 0 works, it only keeps the start outside the mesh.
+constexpr float kRayMargin = 1.0f;
+
+TriangleMesh ground_part(const TriangleMesh& mesh) {
+  TriangleMesh out;
+  out.vertices = mesh.vertices;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.labels[i] == SurfaceClass::ground)
+      out.add_triangle(mesh.triangles[i][0], mesh.triangles[i][1], mesh.triangles[i][2],
+                       SurfaceClass::ground);
+  return out;
+}
 
 }  // namespace
 
@@ -45,7 +59,28 @@ Terrain::Terrain(const TerrainConfig& config) : config_(config) {
   }
 }
 
+void Terrain::drape(const TriangleMesh& mesh) {
+  TriangleMesh ground = ground_part(mesh);
+  if (ground.empty()) return;
+  const Eigen::AlignedBox3f box = ground.bounds();
+  ray_top_ = box.max().z() + kRayMargin;
+  ray_length_ = box.sizes().z() + 2.0f * kRayMargin;
+  ground_ = std::make_shared<const RayCaster>(ground);
+}
+
+bool Terrain::cast_down(double x, double y, double& z, Eigen::Vector3d* n) const {
+  if (!ground_) return false;
+  const RayHit hit = ground_->cast(
+      Eigen::Vector3f(static_cast<float>(x), static_cast<float>(y), ray_top_),
+      -Eigen::Vector3f::UnitZ(), 0.0f, ray_length_);
+  if (!hit.hit()) return false;
+  z = static_cast<double>(ray_top_) - static_cast<double>(hit.distance);
+  if (n) *n = hit.normal.cast<double>().normalized();
+  return true;
+}
+
 double Terrain::height(double x, double y) const {
+  if (double zm = 0.0; cast_down(x, y, zm, nullptr)) return zm;
   double z = gx_ * x + gy_ * y;
   for (std::size_t i = 0; i + kStride <= phase_.size(); i += kStride)
     z += phase_[i + 3] * std::sin(phase_[i] * x + phase_[i + 1] * y + phase_[i + 2]);
@@ -53,6 +88,8 @@ double Terrain::height(double x, double y) const {
 }
 
 Eigen::Vector3d Terrain::normal(double x, double y) const {
+  double zm = 0.0;
+  if (Eigen::Vector3d n; cast_down(x, y, zm, &n)) return n;
   double dzdx = gx_, dzdy = gy_;
   for (std::size_t i = 0; i + kStride <= phase_.size(); i += kStride) {
     const double c = phase_[i + 3] * std::cos(phase_[i] * x + phase_[i + 1] * y + phase_[i + 2]);

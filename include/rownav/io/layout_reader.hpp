@@ -10,13 +10,17 @@
 /// `properties.type` is `row` or absent is a row; `properties.block` (string or number) names its
 /// block. A Point whose `properties.kind` names a PlantKind (`vine`, `tree`, `crop`, `post`,
 /// `end_post`) is a plant, assigned to the nearest row. Everything else (block outlines,
-/// drainage lines, other points) is ignored. `type`, `block` and `kind` must be strings,
+/// drainage lines, other points) is ignored. A plant Point may give its sizes in metres as the
+/// number properties `trunk_diameter`, `trunk_height`, `crown_diameter`, `crown_height` (trees),
+/// `height`, `width` (crop plants); sizes not given come from the field config. `type`, `block` and `kind` must be strings,
 /// numbers or booleans (an array or object there is an error).
 ///
 /// **CSV**: `#` comments and blank lines are skipped; the first other line is a header of
 /// comma-separated column names, in any order: `row` (row label), either `x,y` (metres, local
 /// frame) or `lon,lat` (degrees WGS84), optional `kind` (`row` (default) or a PlantKind: a plant
-/// of row `row`), optional `block` (block name). Row points are taken in file order.
+/// of row `row`), optional `block` (block name), optional plant sizes in metres (the GeoJSON
+/// property names above; an empty cell takes the field config's size). Row points are taken in
+/// file order.
 /// @code
 /// kind,block,row,lon,lat
 /// row,A,1,-0.97747,51.59721

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -72,6 +73,17 @@ struct Field {
   }
 };
 
+/// Per-plant sizes an imported layout may give (CSV columns / GeoJSON properties of the same
+/// names); NaN: the dressing config's value (FieldConfig::orchard for trees, row_crop for crops).
+struct PlantShape {
+  double trunk_diameter = std::numeric_limits<double>::quiet_NaN();  ///< [m] tree trunk
+  double trunk_height = std::numeric_limits<double>::quiet_NaN();    ///< [m] ground to crown
+  double crown_diameter = std::numeric_limits<double>::quiet_NaN();  ///< [m] tree crown width
+  double crown_height = std::numeric_limits<double>::quiet_NaN();    ///< [m] crown extent
+  double height = std::numeric_limits<double>::quiet_NaN();  ///< [m] crop plant / post height
+  double width = std::numeric_limits<double>::quiet_NaN();   ///< [m] crop plant / post diameter
+};
+
 /// Imported geometry: rows as polylines and optional plant / post positions, e.g. from a
 /// GeoJSON or CSV layout already converted to a local metric frame.
 struct RowLayout {
@@ -81,6 +93,7 @@ struct RowLayout {
   };
   std::vector<LayoutRow> rows;
   std::vector<Plant> plants;  ///< explicit plants / posts; empty: the builder places them
+  std::vector<PlantShape> shapes;  ///< one per plant (or empty: every size from the config)
   std::string source;         ///< file it came from, for messages
 };
 

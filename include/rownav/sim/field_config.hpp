@@ -1,13 +1,18 @@
 #pragma once
 /// @file field_config.hpp One config for any field: procedural vineyard / orchard / row crop, or
 /// an imported layout dressed with vines. Imports need files: see io::build_field.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/sim/field.hpp"
+#include "rownav/sim/mesh_labels.hpp"
+#include "rownav/sim/mesh_transform.hpp"
 #include "rownav/sim/orchard.hpp"
 #include "rownav/sim/row_crop.hpp"
 #include "rownav/sim/terrain.hpp"
@@ -48,6 +53,13 @@ struct LayoutLimits {
   void validate() const;
 };
 
+/// What dress_layout builds on an imported layout.
+enum class LayoutDressing : std::uint8_t {
+  plants,  ///< vines along the rows (or the listed plants), posts, wires, weeds, ground
+  none,    ///< nothing: the meshes are the whole field (a photogrammetric mesh); the layout's
+           ///< rows and plants are the ground truth only
+};
+
 /// An imported row layout (GeoJSON / CSV) and optional meshes. Rows are dressed with
 /// FieldConfig::vineyard (its rows, row_length, row_spacing and curvature fields are unused;
 /// the row spacing is estimated from the layout).
@@ -55,8 +67,12 @@ struct LayoutConfig {
   std::string file;               ///< CSV or GeoJSON layout, relative to the config file
   std::string instance_mesh;      ///< optional vine-row mesh instanced along rows (replaces vines)
   double instance_spacing = 5.1;  ///< [m] distance between instances along a row
-  std::string terrain_mesh;       ///< optional whole terrain / field mesh (world frame, labelled
-                                  ///< ground), replaces the procedural ground
+  std::string terrain_mesh;       ///< optional whole terrain / field mesh (labelled ground),
+                                  ///< replaces the procedural ground; the robot, plants and
+                                  ///< posts stand on it (Terrain::drape)
+  MeshTransform terrain_transform;  ///< places terrain_mesh in the layout frame (default: none)
+  LayoutDressing dressing = LayoutDressing::plants;  ///< none: leave the meshes undressed
+  MeshLabelConfig terrain_labels;  ///< labels terrain_mesh parts (default: all ground)
   std::vector<std::string> blocks;  ///< block names to keep (empty = all)
   double origin_lat_deg =
       std::numeric_limits<double>::quiet_NaN();  ///< [deg] ENU origin (NaN = first point)
@@ -70,6 +86,9 @@ struct LayoutConfig {
     v("instance_mesh", s.instance_mesh);
     v("instance_spacing", s.instance_spacing);
     v("terrain_mesh", s.terrain_mesh);
+    v("terrain_transform", s.terrain_transform);
+    v("dressing", s.dressing);
+    v("terrain_labels", s.terrain_labels);
     v("blocks", s.blocks);
     v("origin_lat_deg", s.origin_lat_deg);
     v("origin_lon_deg", s.origin_lon_deg);
@@ -119,10 +138,20 @@ double estimate_row_spacing(const RowLayout& layout);
 
 /// Builds a field from an ordered layout (see order_layout_rows): vines every
 /// config.vineyard.plant_spacing unless `instance` is given (then instanced every
-/// config.layout.instance_spacing) or the layout lists explicit plants; posts, wires, weeds;
-/// the ground from `terrain_mesh` if given, else from config.terrain.
+/// config.layout.instance_spacing) or the layout lists explicit plants (vines and posts dressed
+/// with config.vineyard, trees with config.orchard, crop plants with config.row_crop, each
+/// with its own sizes from layout.shapes); posts, wires, weeds; the ground from `terrain_mesh`
+/// if given, else from config.terrain. With config.layout.dressing none only the meshes and the
+/// listed plants (as ground truth) are kept.
 Field dress_layout(const RowLayout& layout, const FieldConfig& config,
                    const TriangleMesh* instance = nullptr,
                    const TriangleMesh* terrain_mesh = nullptr);
 
 }  // namespace rownav::sim
+
+template <>
+struct rownav::core::EnumNames<rownav::sim::LayoutDressing> {
+  using E = rownav::sim::LayoutDressing;
+  static constexpr std::array<std::pair<E, std::string_view>, 2> values{
+      {{E::plants, "plants"}, {E::none, "none"}}};
+};

@@ -3,6 +3,7 @@
 /// in narrow rows, with per-crop presets.
 #include <array>
 #include <cstdint>
+#include <random>
 #include <string_view>
 #include <utility>
 
@@ -68,6 +69,10 @@ struct RowCropConfig {
   /// The dimensions in effect: the fields, with 0 replaced by the crop preset.
   CropPreset resolved() const;
 };
+
+/// Adds one plant of `crop` (height x width [m]) standing at ground point `base`, labelled crop.
+void add_crop_plant(TriangleMesh& mesh, const Eigen::Vector3f& base, CropType crop, float height,
+                    float width, std::mt19937_64& rng);
 
 /// Generates a row-crop field (plants kind crop, mesh label crop). Deterministic in seed.
 /// @throws std::invalid_argument when a config is invalid (naming the field)

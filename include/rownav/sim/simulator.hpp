@@ -15,6 +15,7 @@
 #include "rownav/core/twist.hpp"
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/field_truth.hpp"
+#include "rownav/sim/ground_contact.hpp"
 #include "rownav/sim/ground_truth.hpp"
 #include "rownav/sim/lidar.hpp"
 #include "rownav/sim/lidar_presets.hpp"
@@ -38,6 +39,7 @@ struct SimConfig {
   double truth_reach = 10.0;           ///< [m] rows within this distance are listed in the truth
   std::uint64_t seed = 1;              ///< seeds every noise source
   FaultsConfig faults;  ///< injected sensor faults and a walking person (default: none)
+  GroundContactConfig ground_contact;  ///< how the base rests on the terrain (z, roll, pitch)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -50,6 +52,7 @@ struct SimConfig {
     v("truth_reach", s.truth_reach);
     v("seed", s.seed);
     v("faults", s.faults);
+    v("ground_contact", s.ground_contact);
   }
   void validate() const;
 };
@@ -77,7 +80,7 @@ class Simulator {
   const SimConfig& config() const { return config_; }
   /// The walking person of the faults (on the terrain) at time t; nullopt without one.
   std::optional<ObstacleBox> person_at(double t) const;
-  /// T_world_base in 3D (terrain height, roll and pitch) for a planar pose.
+  /// T_world_base in 3D (terrain height, roll and pitch; see rest_on_ground) for a planar pose.
   Eigen::Isometry3d pose3d(const core::Pose2& T_world_base) const;
 
  private:

@@ -2,6 +2,7 @@
 /// @file terrain.hpp Ground height field: a plane with slope plus smooth seeded roughness.
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
@@ -30,15 +31,26 @@ struct TerrainConfig {
   void validate() const;
 };
 
-/// Deterministic height field z(x, y) for a given config.
+class RayCaster;
+
+/// Deterministic height field z(x, y) for a given config, optionally draped over a ground mesh
+/// (an imported terrain: heights then come from ray casts straight down onto the mesh).
 class Terrain {
  public:
   Terrain() = default;
   explicit Terrain(const TerrainConfig& config);
 
+  /// Drapes the terrain over the triangles of `mesh` labelled SurfaceClass::ground (the rest is
+  /// ignored, so canopy over the ground is not ridden on): height() and normal() then come from
+  /// a ray cast straight down onto them; where no ground triangle lies under (x, y), from the
+  /// procedural surface of the config. A mesh without ground triangles leaves it undraped.
+  void drape(const TriangleMesh& mesh);
+  /// True when drape() found ground triangles.
+  bool draped() const { return ground_ != nullptr; }
+
   /// [m] ground height at world (x, y).
   double height(double x, double y) const;
-  /// Unit surface normal at (x, y).
+  /// Unit surface normal at (x, y) (of the triangle hit when draped).
   Eigen::Vector3d normal(double x, double y) const;
   /// Triangulated ground over [min, max] at config.cell_size, labelled SurfaceClass::ground.
   TriangleMesh mesh(const Eigen::Vector2d& min, const Eigen::Vector2d& max) const;
@@ -48,6 +60,11 @@ class Terrain {
   TerrainConfig config_;
   double gx_ = 0.0, gy_ = 0.0;  // tan(slope)
   std::vector<double> phase_;   // noise phases / directions derived from the seed
+  // Draped: ground triangles (shared by copies: the field, the simulator) and the height the
+  // downward rays start from, above the mesh's top.
+  std::shared_ptr<const RayCaster> ground_;
+  float ray_top_ = 0.0f, ray_length_ = 0.0f;
+  bool cast_down(double x, double y, double& z, Eigen::Vector3d* n) const;
 };
 
 }  // namespace rownav::sim
