@@ -26,6 +26,7 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(stop_distance, "stop_distance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
   core::check_non_negative(arc_min_speed, "arc_min_speed");
+  core::check_non_negative(arc_max_curvature, "arc_max_curvature");
   core::check_positive(entry_check_depth, "entry_check_depth");
   core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
               "must be > entry_check_depth");
@@ -153,7 +154,8 @@ bool Navigator::obstacle_ahead(const NavInput& in) const {
   const double half = in.robot.width / 2.0;
   // Along the arc the robot drives (a turn passes beside row ends a straight box would hold).
   const double v = in.twist.v;
-  const double k = std::abs(v) > config_.arc_min_speed ? in.twist.omega / v : 0.0;
+  double k = std::abs(v) > config_.arc_min_speed ? in.twist.omega / v : 0.0;
+  if (!(std::abs(k) <= config_.arc_max_curvature)) k = 0.0;
   int n = 0;
   for (const auto& p : in.obstacle_points_base.value_or(in.points_base))
     if (in_swept_box(p.cast<double>(), k, x0, x1, half)) ++n;
