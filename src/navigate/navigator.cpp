@@ -2,8 +2,6 @@
 // Headland turn and corridor entry: navigator_headland.cpp.
 #include "rownav/navigate/navigator.hpp"
 
-#include "rownav/navigate/swept_box.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -25,8 +23,6 @@ void NavigatorConfig::validate() const {
   core::check_positive(perception_timeout, "perception_timeout");
   core::check_non_negative(stop_distance, "stop_distance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
-  core::check_non_negative(arc_min_speed, "arc_min_speed");
-  core::check_non_negative(arc_max_curvature, "arc_max_curvature");
   core::check_positive(entry_check_depth, "entry_check_depth");
   core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
               "must be > entry_check_depth");
@@ -152,13 +148,11 @@ NavOutput Navigator::hold(double stamp, const core::Pose2& T_odom_base,
 bool Navigator::obstacle_ahead(const NavInput& in) const {
   const double x0 = in.robot.base_to_front, x1 = x0 + config_.stop_distance;
   const double half = in.robot.width / 2.0;
-  // Along the arc the robot drives (a turn passes beside row ends a straight box would hold).
-  const double v = in.twist.v;
-  double k = std::abs(v) > config_.arc_min_speed ? in.twist.omega / v : 0.0;
-  if (!(std::abs(k) <= config_.arc_max_curvature)) k = 0.0;
   int n = 0;
   for (const auto& p : in.obstacle_points_base.value_or(in.points_base))
-    if (in_swept_box(p.cast<double>(), k, x0, x1, half)) ++n;
+    if (std::isfinite(p.x()) && std::isfinite(p.y()) && p.x() > x0 && p.x() < x1 &&
+        std::abs(p.y()) < half)
+      ++n;
   return n >= config_.obstacle_min_points;
 }
 

@@ -98,13 +98,6 @@ struct NavigatorConfig {
   double perception_timeout = 0.5;  ///< [s] in a row without rows seen -> safe stop
   double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
   int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
-  /// [m/s] above this speed the stop box follows the arc of the measured curvature (omega / v,
-  /// navigate/swept_box.hpp); slower, the straight box (curvature noisy near rest)
-  double arc_min_speed = 0.2;
-  /// [1/m] tighter measured curvatures keep the straight box: a near in-place turn sweeps the
-  /// footprint, not an arc (a 0.2 m arc would wrap the box round the robot); car-like
-  /// robots turn at radii >= 2 m
-  double arc_max_curvature = 1.0;
   double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
   double entry_max_depth = 6.0;     ///< [m] entering without a corridor seen -> perception_lost
   RowEndEstimatorConfig row_end_estimate;  ///< row ends and spacing of the corridor being left
@@ -124,8 +117,6 @@ struct NavigatorConfig {
     v("perception_timeout", s.perception_timeout);
     v("stop_distance", s.stop_distance);
     v("obstacle_min_points", s.obstacle_min_points);
-    v("arc_min_speed", s.arc_min_speed);
-    v("arc_max_curvature", s.arc_max_curvature);
     v("entry_check_depth", s.entry_check_depth);
     v("entry_max_depth", s.entry_max_depth);
     v("row_end_estimate", s.row_end_estimate);
