@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rownav::detect {
 
@@ -49,6 +50,16 @@ void RowProfile::window(const core::RowObservation& obs, std::size_t k, double& 
   hi = has_out ? config_.outer_ratio * gap(left ? k + 1 : k - 1) : config_.outer_ratio_last * g_in;
 }
 
+float RowProfile::crown_offset() {
+  buf_.clear();
+  for (const auto& q : samples_) buf_.push_back(q.z);
+  const float z_crown = quantile(buf_, config_.crown_quantile);
+  buf_.clear();
+  for (const auto& q : samples_)
+    if (q.z >= z_crown) buf_.push_back(q.s);
+  return buf_.empty() ? std::numeric_limits<float>::quiet_NaN() : quantile(buf_, 0.5);
+}
+
 void RowProfile::profile(const core::PointCloud& cloud, core::RowLine& r, double lo, double hi) {
   const Eigen::Vector2d n = r.line.normal() * outwards(r);
   const double c = n.dot(r.line.point), r2 = config_.max_range * config_.max_range;
@@ -60,14 +71,8 @@ void RowProfile::profile(const core::PointCloud& cloud, core::RowLine& r, double
     if (s >= lo && s <= hi) samples_.push_back({static_cast<float>(s), p.z});
   }
   if (static_cast<int>(samples_.size()) < config_.min_points) return;
-  buf_.clear();
-  for (const auto& q : samples_) buf_.push_back(q.z);
-  const float z_crown = quantile(buf_, config_.crown_quantile);
-  buf_.clear();
-  for (const auto& q : samples_)
-    if (q.z >= z_crown) buf_.push_back(q.s);
-  if (buf_.empty()) return;
-  const float crown = r.centre_line ? 0.0f : quantile(buf_, 0.5);
+  const float crown = r.centre_line ? 0.0f : crown_offset();  // a centre line needs no crown
+  if (!std::isfinite(crown)) return;
   buf_.clear();
   for (const auto& q : samples_) buf_.push_back(q.s);
   const float face = quantile(buf_, config_.face_quantile);

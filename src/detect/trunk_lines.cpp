@@ -18,19 +18,18 @@ struct Rotated {
   int points = 0;
 };
 
-std::vector<Rotated> rotate(const std::vector<TrunkCentre>& trunks, double gamma) {
+void rotate(const std::vector<TrunkCentre>& trunks, double gamma, std::vector<Rotated>& out) {
   const double c = std::cos(gamma), s = std::sin(gamma);
-  std::vector<Rotated> out;
-  out.reserve(trunks.size());
+  out.clear();
   for (const auto& t : trunks)
     out.push_back({c * t.centre.x() + s * t.centre.y(), -s * t.centre.x() + c * t.centre.y(),
                    t.points});
-  return out;
 }
 
 /// Heading vote: trunk pairs that line up along gamma (Gaussian kernel across it).
-double vote(const std::vector<TrunkCentre>& trunks, double gamma, double sigma, double min_du) {
-  const auto r = rotate(trunks, gamma);
+double vote(const std::vector<TrunkCentre>& trunks, double gamma, double sigma, double min_du,
+            std::vector<Rotated>& r) {
+  rotate(trunks, gamma, r);
   double score = 0.0;
   const double k = -0.5 / (sigma * sigma);
   for (std::size_t i = 0; i < r.size(); ++i)
@@ -44,11 +43,11 @@ double vote(const std::vector<TrunkCentre>& trunks, double gamma, double sigma, 
 
 /// Best heading over [lo, hi] in steps of `step`; `score` gets its vote.
 double search(const std::vector<TrunkCentre>& trunks, double lo, double hi, double step,
-              double sigma, double min_du, double& score) {
+              double sigma, double min_du, double& score, std::vector<Rotated>& buf) {
   double best = 0.5 * (lo + hi);
   score = -1.0;
   for (double g = lo; g <= hi + 1e-12; g += step) {
-    const double v = vote(trunks, g, sigma, min_du);
+    const double v = vote(trunks, g, sigma, min_du, buf);
     if (v > score) score = v, best = g;
   }
   return best;
@@ -117,29 +116,29 @@ core::RowObservation TrunkLinesDetector::detect(const DetectorInput& input) {
   core::RowObservation obs;
   obs.stamp = input.stamp;
   obs.heading = std::numeric_limits<double>::quiet_NaN();
-  trunks_.clear();
   if (input.cloud != nullptr) {
     std::span<const float> h;
     if (input.heights != nullptr) h = *input.heights;
-    trunks_ = finder_.find(*input.cloud, h);
-    trunk_rows(input, obs);
+    trunk_rows(finder_.find(*input.cloud, h), input, obs);
   }
   if (config_.crown_fallback) add_crown_rows(input, obs);
   finalize_observation(obs, config_.lookahead);
   return obs;
 }
 
-void TrunkLinesDetector::trunk_rows(const DetectorInput& input, core::RowObservation& obs) {
-  if (static_cast<int>(trunks_.size()) < config_.min_trunks) return;
+void TrunkLinesDetector::trunk_rows(const std::vector<TrunkCentre>& trunks,
+                                    const DetectorInput& input, core::RowObservation& obs) {
+  if (static_cast<int>(trunks.size()) < config_.min_trunks) return;
+  std::vector<Rotated> r;  // one buffer for every heading tried
   const double sigma = 0.5 * config_.line_tolerance;
   const double coarse = config_.heading_step_deg * kDegToRad;
   double score = 0.0;
-  double g = search(trunks_, config_.heading_min_deg * kDegToRad,
+  double g = search(trunks, config_.heading_min_deg * kDegToRad,
                     config_.heading_max_deg * kDegToRad, coarse, sigma,
-                    config_.min_pair_distance, score);
-  g = search(trunks_, g - coarse, g + coarse, config_.fine_step_deg * kDegToRad, sigma,
-             config_.min_pair_distance, score);
-  const auto r = rotate(trunks_, g);
+                    config_.min_pair_distance, score, r);
+  g = search(trunks, g - coarse, g + coarse, config_.fine_step_deg * kDegToRad, sigma,
+             config_.min_pair_distance, score, r);
+  rotate(trunks, g, r);
   std::vector<std::vector<std::size_t>> rows;
   for (auto& idx : group(r, config_.line_tolerance)) {
     if (static_cast<int>(idx.size()) < config_.min_trunks) continue;
@@ -156,9 +155,9 @@ void TrunkLinesDetector::trunk_rows(const DetectorInput& input, core::RowObserva
     int points = 0;
     support.clear();
     for (auto i : idx) {
-      mean += trunks_[i].centre;
-      points += trunks_[i].points;
-      support.push_back(trunks_[i].centre.cast<float>());
+      mean += trunks[i].centre;
+      points += trunks[i].points;
+      support.push_back(trunks[i].centre.cast<float>());
     }
     const core::Line2 line(mean / static_cast<double>(idx.size()), dir);
     if (config_.require_crown &&

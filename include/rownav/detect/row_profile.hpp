@@ -77,6 +77,8 @@ class RowProfile {
   };
   /// Window [lo, hi] across row k (outwards) from its neighbours.
   void window(const core::RowObservation& obs, std::size_t k, double& lo, double& hi) const;
+  /// Median across-row position of the top crown_quantile of samples_ (NaN: none).
+  float crown_offset();
   void profile(const core::PointCloud& cloud, core::RowLine& r, double lo, double hi);
 
   RowProfileConfig config_;

@@ -84,15 +84,15 @@ class TrunkLinesDetector : public RowDetector {
   const TrunkLinesConfig& config() const { return config_; }
 
  private:
-  /// Trunk rows of the current trunks_ (empty when they give no heading); obs.heading set.
-  void trunk_rows(const DetectorInput& input, core::RowObservation& obs);
+  /// Rows through `trunks` (none when they give no line); obs.heading set when any.
+  void trunk_rows(const std::vector<TrunkCentre>& trunks, const DetectorInput& input,
+                  core::RowObservation& obs);
   /// The crown detector's rows when there is no trunk row.
   void add_crown_rows(const DetectorInput& input, core::RowObservation& obs);
 
   TrunkLinesConfig config_;
   TrunkCentres finder_;
   HoughSkewDetector crowns_;
-  std::vector<TrunkCentre> trunks_;
 };
 
 }  // namespace rownav::detect
