@@ -90,6 +90,7 @@ core::RowObservation DetectionPipeline::detect(double stamp, bool planar) {
     DetectorInput input = preprocessor_.input(stamp);
     input.planar_scan = planar && input.cloud == nullptr;
     last_points_ = input.points;
+    if (filter_ && input.cloud == nullptr) input.points = core::filter_points(input.points, *filter_);
     core::RowObservation obs = detector_->detect(input);
     // Centre lines under the crowns, canopy half widths (issue 10); 2D input: no heights.
     if (input.cloud != nullptr) profile_.apply(*input.cloud, obs);

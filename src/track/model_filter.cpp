@@ -29,6 +29,7 @@ double fir(std::deque<double>& history, double e, const std::vector<double>& b) 
 
 void ModelFilterConfig::validate() const {
   core::check_positive(box_half_width, "box_half_width");
+  core::check_range(box_spacing_ratio, 0.0, 1.0, "box_spacing_ratio");
   core::check_non_negative(init_min_distance, "init_min_distance");
   core::check(init_max_distance > init_min_distance, "init_max_distance",
               "must be > init_min_distance");
@@ -77,6 +78,30 @@ double ModelFilterTracker::init_max() const {
   return std::max(config_.init_max_distance, config_.init_spacing_ratio * measured_spacing());
 }
 
+double ModelFilterTracker::box_half_width() const {
+  const double s = measured_spacing();
+  if (config_.box_spacing_ratio <= 0.0 || !std::isfinite(s) || s <= 0.0)
+    return config_.box_half_width;
+  return config_.box_spacing_ratio * s;
+}
+
+std::optional<core::DataFilterBoxes> ModelFilterTracker::data_filter(
+    const core::Pose2& T_odom_base) const {
+  const auto pose = last_pose();
+  if (!config_.filter_points || !pose) return std::nullopt;
+  core::DataFilterBoxes f;
+  f.half_width = box_half_width();
+  f.init_min_range = config_.init_min_distance;
+  f.init_max_range = init_max();
+  const core::Pose2 step = pose->inverse() * T_odom_base;  // models' frame -> this frame
+  for (int s = 0; s < 2; ++s)
+    if (have_[s] && std::abs(model_[s].a) <= config_.max_steepness) {
+      const SlopeIntercept m = move_line(model_[s], step);
+      f.models[static_cast<std::size_t>(s)] = core::SideModel{m.a, m.b};
+    }
+  return f;
+}
+
 bool ModelFilterTracker::in_box(const core::RowLine& r, int s, double init_max) const {
   const bool side = s == 0 ? r.offset > 0.0 : r.offset < 0.0;
   if (!side) return false;
@@ -89,7 +114,7 @@ bool ModelFilterTracker::in_box(const core::RowLine& r, int s, double init_max) 
   // the row's support.
   const SlopeIntercept& m = model_[s];
   for (const double x : {r.x_min, r.x_max, 0.0})
-    if (std::abs(r.line.y_at(x) - (m.a * x + m.b)) > config_.box_half_width) return false;
+    if (std::abs(r.line.y_at(x) - (m.a * x + m.b)) > box_half_width()) return false;
   return true;
 }
 

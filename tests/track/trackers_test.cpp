@@ -271,3 +271,42 @@ TEST(TrackerConfigs, ValidateNamesTheField) {
 
 }  // namespace
 }  // namespace rownav::track
+
+namespace rownav::track {
+namespace {
+
+TEST(ModelFilter, DataFilterBoxesFollowTheModelsAndScaleWithTheSpacing) {
+  // Malavazi 2018 sec. 2.3.1: the followed models, moved to the next frame's pose, select its
+  // points; the box is box_spacing_ratio x the measured spacing (0.2 x 2 m here).
+  ModelFilterTracker tracker;
+  EXPECT_FALSE(tracker.data_filter(core::Pose2()).has_value());  // before any frame
+  test::CorridorScene scene;
+  scene.spacing = 2.0;
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 10; ++i) {
+    const core::Pose2 T(0.1 * i, 0.0, 0.0);
+    tracker.update(test::observe(scene, T, 0.1 * i, rng), T);
+  }
+  // Next frame 0.3 m to the left of the last pose: the rows move 0.3 m right in the base frame.
+  const auto f = tracker.data_filter(core::Pose2(0.9, 0.3, 0.0));
+  ASSERT_TRUE(f.has_value());
+  ASSERT_TRUE(f->models[0] && f->models[1]);
+  EXPECT_NEAR(f->models[0]->b - f->models[1]->b, 2.0, 0.1);
+  EXPECT_NEAR(0.5 * (f->models[0]->b + f->models[1]->b), -0.3, 0.02);
+  EXPECT_NEAR(f->half_width, 0.2 * 2.0, 0.05);
+}
+
+TEST(ModelFilter, DataFilterOffKeepsEveryPoint) {
+  ModelFilterConfig c;
+  c.filter_points = false;
+  ModelFilterTracker tracker(c);
+  test::CorridorScene scene;
+  std::mt19937_64 rng(12);
+  tracker.update(test::observe(scene, core::Pose2(), 0.0, rng), core::Pose2());
+  EXPECT_FALSE(tracker.data_filter(core::Pose2()).has_value());
+  c.box_spacing_ratio = 1.5;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rownav::track

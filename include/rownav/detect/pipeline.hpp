@@ -1,11 +1,13 @@
 #pragma once
 /// @file pipeline.hpp One LiDAR frame to a RowObservation: LiDAR frame -> base frame (the mount),
 /// the preprocessing chain, then a row detector.
+#include <optional>
 #include <Eigen/Geometry>
 #include <memory>
 #include <span>
 #include <vector>
 
+#include "rownav/core/data_filter.hpp"
 #include "rownav/core/point_cloud.hpp"
 #include "rownav/core/row_observation.hpp"
 #include "rownav/core/scan2d.hpp"
@@ -40,6 +42,11 @@ class DetectionPipeline {
   /// 2D points already in the base frame (x forward, y left, metres). Never throws.
   core::RowObservation process_points(std::span<const Eigen::Vector2f> points_base, double stamp);
 
+  /// Data-filter boxes for the next frames' planar points (Malavazi 2018 sec. 2.3.1; from the
+  /// tracker); nullopt: no filter. last_points() stays the unfiltered scan (end of row,
+  /// obstacles).
+  void set_data_filter(std::optional<core::DataFilterBoxes> boxes) { filter_ = std::move(boxes); }
+
   const RowDetector& detector() const { return *detector_; }
   const Eigen::Isometry3d& T_base_lidar() const { return T_base_lidar_; }
   /// Points handed to the detector in the last frame (base frame, after preprocessing).
@@ -61,6 +68,7 @@ class DetectionPipeline {
   Eigen::Isometry3d T_base_lidar_;
   core::PointCloud cloud_base_;
   std::vector<Eigen::Vector2f> points_base_, last_points_;
+  std::optional<core::DataFilterBoxes> filter_;
 };
 
 }  // namespace rownav::detect

@@ -20,6 +20,14 @@ namespace rownav::track {
 /// Parameters of ModelFilterTracker. Paper values where it gives them, rownav otherwise.
 struct ModelFilterConfig {
   double box_half_width = 0.4;  ///< [m] half width of the data-filter box around a model (rownav)
+  /// [-] once the row spacing is measured the box half width is this fraction of it (0.4 m at
+  /// a 2 m vineyard spacing; a 0.8 m vegetable bed gets ~0.13 m, so the lane's weeds stay out of
+  /// the box, issue 11); 0 keeps box_half_width
+  double box_spacing_ratio = 0.2;
+  /// Malavazi 2018 sec. 2.3.1 as published: the boxes select the next scan's points before the
+  /// detector (a planar scan's points; 3D detectors see their cloud unfiltered). false: only
+  /// the detected rows are gated by the boxes
+  bool filter_points = true;
   double init_min_distance = 0.3;  ///< [m] without a model: rows nearer are ignored (Malavazi 2018)
   double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
   /// [-] once the row spacing is measured (centre to centre, accepted frames), the same window
@@ -46,6 +54,8 @@ struct ModelFilterConfig {
   template <class S, class V>
   static void fields(S& s, V& v) {
     v("box_half_width", s.box_half_width);
+    v("box_spacing_ratio", s.box_spacing_ratio);
+    v("filter_points", s.filter_points);
     v("init_min_distance", s.init_min_distance);
     v("init_max_distance", s.init_max_distance);
     v("init_spacing_ratio", s.init_spacing_ratio);
@@ -70,6 +80,7 @@ class ModelFilterTracker : public TrackerBase {
   explicit ModelFilterTracker(const ModelFilterConfig& config = {});
   std::string_view name() const override { return "model_filter"; }
   const ModelFilterConfig& config() const { return config_; }
+  std::optional<core::DataFilterBoxes> data_filter(const core::Pose2& T_odom_base) const override;
 
  protected:
   bool has_model() const override { return have_[0] || have_[1]; }
@@ -87,6 +98,8 @@ class ModelFilterTracker : public TrackerBase {
   double mean_spacing() const;
   /// [m] initialisation window's far edge (init_max_distance, or more with the spacing measured).
   double init_max() const;
+  /// [m] the data-filter box half width in effect (box_spacing_ratio x the measured spacing).
+  double box_half_width() const;
 
   ModelFilterConfig config_;
   bool have_[2] = {false, false};                     // left, right

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "rownav/core/data_filter.hpp"
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/line2.hpp"
 #include "rownav/core/pose2.hpp"
@@ -86,6 +87,13 @@ class RowTracker {
   virtual RowTracking update(const core::RowObservation& obs, const core::Pose2& T_odom_base) = 0;
   /// Forgets every model (e.g. after a headland turn, before entering the next corridor).
   virtual void reset() = 0;
+  /// The data-filter boxes for a frame whose base is at `T_odom_base` (Malavazi 2018 sec.
+  /// 2.3.1: the followed models select the next scan's points); nullopt: the tracker filters
+  /// nothing (every tracker but model_filter).
+  virtual std::optional<core::DataFilterBoxes> data_filter(const core::Pose2& T_odom_base) const {
+    (void)T_odom_base;
+    return std::nullopt;
+  }
 };
 
 }  // namespace rownav::track

@@ -4,6 +4,7 @@
 /// odometry, carries the models by odometry, decides tracking / coasting / lost and turns the two
 /// followed rows into corridor deviations.
 #include <array>
+#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -74,6 +75,10 @@ class TrackerBase : public RowTracker {
   virtual void describe(RowTracking& out) const = 0;
   /// [m] row spacing centre to centre from the recent observations (0: none yet).
   double measured_spacing() const { return spacing_.spacing(); }
+  /// Odometry pose of the last update (the models' base frame); nullopt before the first.
+  std::optional<core::Pose2> last_pose() const {
+    return started_ ? std::optional<core::Pose2>(last_pose_) : std::nullopt;
+  }
   /// Last say on the output (e.g. a FIR filter); the default does nothing.
   virtual void finish(RowTracking& /*out*/) {}
 
