@@ -150,6 +150,12 @@ core::RowObservation NavStack::detect_frame(Pending& frame, bool& levelled) {
 FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Pose2>& T) {
   FrameReport r;
   r.stamp = frame.stamp();
+  if (parts_.tracker && config_.stack.mode != StackMode::detect) {
+    // Malavazi 2018 sec. 2.3.1: the followed models, moved to this frame, select its points.
+    const auto T_now = T_odom_base(r.stamp);
+    const auto pose = T_now ? T_now : T;
+    parts_.pipeline->set_data_filter(pose ? parts_.tracker->data_filter(*pose) : std::nullopt);
+  }
   r.observation = detect_frame(frame, r.levelled);
   if (config_.stack.mode == StackMode::detect) return r;
   // The frame is stamped at the start of the sweep: the tracker gets the pose of that instant.
@@ -177,6 +183,8 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   if (!cloud.points.empty()) {
     tall = obstacle_points(cloud, parts_.pipeline->last_ground(), config_.stack.obstacles);
     in.obstacle_points_base = std::span<const Eigen::Vector2f>(tall);
+  } else if (!config_.stack.planar_obstacles) {
+    in.obstacle_points_base = std::span<const Eigen::Vector2f>();  // drives over them
   }
   in.robot = config_.robot;
   NavOutput out = navigator_->step(in);

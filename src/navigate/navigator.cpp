@@ -8,6 +8,24 @@
 
 namespace rownav::navigate {
 
+namespace {
+
+/// The robot is at the rows unless every followed row is seen to begin farther than `reach`
+/// ahead of the base (a tracking without row extents cannot tell: at the rows).
+bool reached_rows(const track::RowTracking& t, double reach) {
+  if (t.status == track::TrackStatus::lost) return false;
+  bool any = false;
+  for (const int i : {t.left, t.right}) {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) continue;
+    const double x = t.rows[static_cast<std::size_t>(i)].x_min;
+    if (!std::isfinite(x) || x <= reach) return true;
+    any = true;
+  }
+  return !any;
+}
+
+}  // namespace
+
 std::string Navigator::fmt(double v) {  // event texts: centimetres are enough
   std::ostringstream s;
   s.precision(2);
@@ -21,6 +39,7 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(exit_distance, "exit_distance");
   core::check_non_negative(exit_clearance, "exit_clearance");
   core::check_positive(perception_timeout, "perception_timeout");
+  core::check_non_negative(arm_reach, "arm_reach");
   core::check_non_negative(stop_distance, "stop_distance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
   core::check_positive(entry_check_depth, "entry_check_depth");
@@ -177,7 +196,8 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   c.speed = in.twist.v;
   out.control = c;
   const auto& centre = ends_.centre();
-  if (in.end_of_row.end_detected && centre) {
+  at_rows_ = at_rows_ || reached_rows(in.tracking, config_.arm_reach);
+  if (in.end_of_row.end_detected && centre && at_rows_) {
     state_ = NavState::exiting;
     exit_distance_ = exit_distance(in);
     if (!ends_.end_arc()) {  // no row end seen: the detector's distance, else the box's near edge

@@ -89,6 +89,7 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
                   "corridor seen " + fmt(diff) + " m from the planned one");
     ++leg_;
     state_ = NavState::in_row;
+    at_rows_ = true;  // entered past entry_check_depth: between the rows
     // The end-of-row detector saw no rows ahead all through the headland and latches; the new
     // corridor starts with a fresh decision.
     out.reset_end_of_row = true;

@@ -227,3 +227,51 @@ TEST(EndOfRowSim, SimulatedVineyardFrames) {
 
 }  // namespace
 }  // namespace rownav::navigate
+
+namespace rownav::navigate {
+namespace {
+
+// A planar scan of two rows' faces at y = +-0.3 m from x = 0 to row_end, ~200 points a metre.
+std::vector<Eigen::Vector2f> planar_rows(double row_end) {
+  std::vector<Eigen::Vector2f> pts;
+  for (double x = 0.3; x < row_end; x += 0.005)
+    for (const double y : {-0.3, 0.3}) pts.emplace_back(float(x), float(y));
+  return pts;
+}
+
+TEST(EndOfRow, PlanarScanEmptiedByTheRowEndIsTheEnd) {
+  EndOfRowConfig c;
+  c.box_x_min = 1.0, c.box_x_max = 2.0;
+  EndOfRowDetector d(c);
+  EndOfRowResult r;
+  const auto pts = planar_rows(0.8);  // the rows end before the box: open ground ahead
+  for (int k = 0; k < c.confirm_frames; ++k) r = d.update(core::PointCloud{}, pts, no_tracking());
+  EXPECT_TRUE(r.end_detected);
+}
+
+TEST(EndOfRow, PlanarScanShadowedByAWeedAheadIsNoEvidence) {
+  // A weed 0.4 m ahead in the lane blocks the beams towards the box: the box is empty because
+  // it is unseen, not because the rows ended (issue 11).
+  EndOfRowConfig c;
+  c.box_x_min = 1.0, c.box_x_max = 2.0;
+  EndOfRowDetector d(c);
+  auto pts = planar_rows(0.8);
+  for (double y = -0.45; y <= 0.45; y += 0.005) pts.emplace_back(0.4f, float(y));
+  EndOfRowResult r;
+  for (int k = 0; k < 2 * c.confirm_frames; ++k)
+    r = d.update(core::PointCloud{}, pts, no_tracking());
+  EXPECT_FALSE(r.frame_positive);
+  EXPECT_FALSE(r.end_detected);
+}
+
+TEST(EndOfRow, ShadowSettingsAreValidated) {
+  EndOfRowConfig c;
+  c.max_shadowed = 1.5;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = EndOfRowConfig{};
+  c.shadow_bin_deg = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rownav::navigate

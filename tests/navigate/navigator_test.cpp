@@ -62,3 +62,52 @@ TEST(Navigator, EndOfRowLeadsToExitingThenTurning) {
 
 }  // namespace
 }  // namespace rownav::navigate
+
+namespace rownav::navigate {
+namespace {
+
+// The followed rows of `in` begin x_min ahead of the base (left at +0.9 m, right at -0.9 m).
+void rows_from(NavInput& in, double x_min) {
+  for (const double y : {-0.9, 0.9}) {
+    track::TrackedRow r;
+    r.line_base = core::Line2(Eigen::Vector2d(0.0, y), Eigen::Vector2d(1.0, 0.0));
+    r.offset = y;
+    r.x_min = x_min;
+    r.x_max = x_min + 3.0;
+    in.tracking.rows.push_back(r);
+  }
+  in.tracking.right = 0;
+  in.tracking.left = 1;
+}
+
+TEST(Navigator, RowEndIsNotArmedBeforeTheRobotReachesTheRows) {
+  // A mission starts in the headland: the empty ground before the row start reads as a row
+  // end; the end counts only once a followed row begins within arm_reach (issue 11).
+  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left};
+  for (int k = 0; k < 5; ++k) {
+    NavInput in = frame(0.1 * k, true);
+    rows_from(in, 2.0 - 0.1 * k);  // rows begin 2.0 .. 1.6 m ahead (> arm_reach 1 m)
+    in.end_of_row.end_detected = true;
+    in.end_of_row.distance_to_end = 3.0;
+    EXPECT_EQ(nav.step(in).state, NavState::in_row) << "frame " << k;
+  }
+  NavInput in = frame(0.5, true);
+  rows_from(in, 0.8);  // at the rows
+  in.end_of_row.end_detected = true;
+  in.end_of_row.distance_to_end = 3.0;
+  EXPECT_EQ(nav.step(in).state, NavState::exiting);
+}
+
+TEST(Navigator, ArmReachIsValidated) {
+  NavigatorConfig c;
+  c.arm_reach = -0.1;
+  try {
+    c.validate();
+    FAIL() << "negative arm_reach accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("arm_reach"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace rownav::navigate

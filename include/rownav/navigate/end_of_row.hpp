@@ -42,6 +42,10 @@ struct EndOfRowConfig {
   /// [points] planar scans (no cloud): fewer points than this in the whole box means the
   /// corridor is over (003 sec. II-C: "the number of points in the rectangle approaches zero")
   int scan_point_threshold = 3;
+  /// [-] planar scans: an empty box more than this share shadowed by nearer returns inside the
+  /// corridor band is unseen, not empty (a weed or leaf in the lane ahead; issue 11)
+  double max_shadowed = 0.5;
+  double shadow_bin_deg = 1.0;  ///< [deg] angular bins of that shadow test (rownav)
   bool use_extent = true;        ///< also end when every followed row's x_max < extent_distance
   double extent_distance = 3.0;  ///< [m] all followed rows ending closer than this: row end ahead
 
@@ -58,6 +62,8 @@ struct EndOfRowConfig {
     v("row_margin", s.row_margin);
     v("count_jump", s.count_jump);
     v("scan_point_threshold", s.scan_point_threshold);
+    v("max_shadowed", s.max_shadowed);
+    v("shadow_bin_deg", s.shadow_bin_deg);
     v("use_extent", s.use_extent);
     v("extent_distance", s.extent_distance);
   }

@@ -104,6 +104,12 @@ struct StackConfig {
   control::FrontRectConfig front = {.margin = 0.0, .min_points = 3};
   WatchdogConfig watchdog;  ///< stale inputs and state budgets
   ObstacleBandConfig obstacles;  ///< which 3D points are obstacles (stop, slow-down)
+  /// A planar scan's points in front of the robot are obstacles (stop, slow-down). false: the
+  /// robot drives over what its scanner sees between the rows: a weeding robot whose scanner is
+  /// low enough to cut vegetables cuts the weeds it is there to remove, and a plane gives no
+  /// height to tell them from a post (Malavazi 2018's Oz navigation has no obstacle stop; use a
+  /// 3D sensor, whose obstacles go by height, where people or posts can be in the corridor)
+  bool planar_obstacles = true;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -121,6 +127,7 @@ struct StackConfig {
     v("front", s.front);
     v("watchdog", s.watchdog);
     v("obstacles", s.obstacles);
+    v("planar_obstacles", s.planar_obstacles);
   }
   void validate() const {
     core::check_positive(sweep_period, "sweep_period");

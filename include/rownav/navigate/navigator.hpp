@@ -96,6 +96,11 @@ struct NavigatorConfig {
   /// widths keep exit_distance)
   double exit_clearance = 0.5;
   double perception_timeout = 0.5;  ///< [s] in a row without rows seen -> safe stop
+  /// [m] a mission starts in the headland before its first corridor: the end of row is armed
+  /// only once a followed row's support begins within this distance ahead of the base (the robot
+  /// is at the rows). Before that, the empty ground between the robot and the row start reads as
+  /// a row end (issue 11: a 4 m 2D scanner and a short bed exited before the bed, 3/3 runs)
+  double arm_reach = 1.0;
   double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
   int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
   double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
@@ -115,6 +120,7 @@ struct NavigatorConfig {
     v("exit_distance", s.exit_distance);
     v("exit_clearance", s.exit_clearance);
     v("perception_timeout", s.perception_timeout);
+    v("arm_reach", s.arm_reach);
     v("stop_distance", s.stop_distance);
     v("obstacle_min_points", s.obstacle_min_points);
     v("entry_check_depth", s.entry_check_depth);
@@ -218,6 +224,7 @@ class Navigator {
   double exit_distance_ = 0.0;  // [m] this row's exit: exit_distance or the canopy's reach
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
+  bool at_rows_ = false;  // the end of row is armed (the robot has reached the rows)
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
   int served_ = 0, turns_ = 0;
   double last_seen_ = -1.0, last_stamp_ = 0.0;
