@@ -118,6 +118,7 @@ bool run_mission(const RunArgs& a) {
       crop_config_for(a, field_config, a.detect_config, "detect", "--detect-config");
   s.detector = a.detector.empty() ? io::default_detector(s.detect_config) : a.detector;
   s.time_limit = a.time_limit;
+  if (a.lead_in) s.lead_in = *a.lead_in;
   if (s.sensors.faults.any()) s.settle = 3.0;  // where the robot comes to rest after a stop
   make_stack(a, s);
   std::optional<io::Progress> bar;
@@ -196,6 +197,10 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   c->add_option("--seed", a->seed, "simulation seed (default 1)");
   c->add_option("--time-limit", a->time_limit, "[s] simulated time limit (default 1800)");
+  c->add_option("--lead-in", a->lead_in,
+                 "[m] start this far before the first corridor's entrance (default 1.5; 0 = at "
+                 "the row start, as an operator places a robot at the head of a bed)")
+      ->check(CLI::Range(0.0, 100.0));
   c->add_flag("--quiet", a->quiet, "no progress bar");
   c->callback([a] {
     if (!run_mission(*a)) {

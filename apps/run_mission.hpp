@@ -24,6 +24,7 @@ struct RunArgs {
   std::optional<navigate::RowEndPolicy> row_end_policy;  ///< overrides the navigator config
   std::uint64_t seed = 1;
   double time_limit = 1800.0;  ///< [s] simulated
+  std::optional<double> lead_in;  ///< [m] start before the first corridor (runner default)
   bool quiet = false;
   bool overwrite = false;  ///< replace `out` when it is an earlier rownav output
 };

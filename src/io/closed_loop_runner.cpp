@@ -99,6 +99,7 @@ class RunnerSink : public sim::SimSink {
     s.twist = g.twist;
     s.cmd = cmd;
     s.plants_crushed = g.plants_crushed;
+    record_crushes(g, s.state);
     const auto fp = sim_.robot().footprint_world();
     for (const auto& p : posts_)
       if ((p.position - g.T_world_base.translation()).norm() < 3.0 &&
@@ -107,6 +108,14 @@ class RunnerSink : public sim::SimSink {
     s.obstacle_clearance = g.obstacle_clearance;
     if (g.obstacle_clearance <= 0.0) s.collision = true;  // touched the walking person
     result_.samples.push_back(s);
+  }
+
+  void record_crushes(const sim::GroundTruth& g, navigate::NavState st) {
+    const auto& idx = sim_.crushed_plants();
+    for (std::size_t k = result_.crushes.size(); k < idx.size(); ++k) {
+      const auto& p = sim_.field().plants[static_cast<std::size_t>(idx[k])];
+      result_.crushes.push_back({g.stamp, p.position, p.radius, st, g.T_world_base.translation()});
+    }
   }
 
   navigate::NavStack& stack_;

@@ -175,6 +175,7 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
           (s.T_world_base.translation() - run.samples[i - 1].T_world_base.translation()).norm();
   }
   fill_corridors(run, truth, block, r);
+  r.crushes = run.crushes;
   fill_tracking(run, r);
   Stats ends;
   for (const auto& p : run.row_ends_world) {

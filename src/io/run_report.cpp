@@ -41,6 +41,8 @@ Color state_colour(navigate::NavState s) {
   }
 }
 
+constexpr double kCrushRingMin = 0.15;  // [m] smallest ring drawn round a crushed plant
+
 void write_text(const fs::path& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);
   out << text;
@@ -58,6 +60,8 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
     o.extra_legend.push_back({std::string(core::enum_name(s)), Style{state_colour(s), {}, 2.0}});
   o.extra_legend.push_back(
       {"row ends (estimated)", Style{Color::hex("#d62728"), Color::hex("#d62728"), 1.0, true}});
+  if (!run.crushes.empty())
+    o.extra_legend.push_back({"plant crushed", Style{Color::hex("#000000"), {}, 2.0}});
   draw_field(canvas, field, o);
   std::vector<Eigen::Vector2d> seg;
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
@@ -70,6 +74,8 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
     seg.clear();
   }
   for (const auto& p : run.row_ends_world) canvas.dot(p, 4.0, Color::hex("#d62728"));
+  for (const auto& c : run.crushes)  // a ring round each crushed plant, at least 0.15 m
+    canvas.circle(c.position, std::max(c.radius, kCrushRingMin), Style{Color::hex("#000000"), {}, 2.0});
 }
 
 /// Lateral error and speed over the driven distance; headland parts shaded.
@@ -188,6 +194,15 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   j["line_intercept_error_std"] = num(s.line_intercept_error_std);
   j["tracking_lost_in_row"] = s.tracking_lost_in_row;
   j["sim_time"] = s.sim_time, j["wall_time"] = s.wall_time, j["distance"] = s.distance;
+  j["crushed"] = json::array();
+  for (const auto& c : s.crushes)
+    j["crushed"].push_back({{"stamp", c.stamp},
+                            {"x", c.position.x()},
+                            {"y", c.position.y()},
+                            {"radius", c.radius},
+                            {"state", std::string(core::enum_name(c.state))},
+                            {"robot_x", c.robot_xy.x()},
+                            {"robot_y", c.robot_xy.y()}});
   j["per_corridor"] = json::array();
   for (const auto& c : s.per_corridor)
     j["per_corridor"].push_back({{"corridor", c.corridor},

@@ -96,6 +96,8 @@ void RowCropConfig::validate() const {
   core::check_range(curvature_amplitude, 0.0, 20.0, "curvature_amplitude");
   core::check_positive(curvature_wavelength, "curvature_wavelength");
   core::check_range(headland_width, 0.0, 100.0, "headland_width");
+  core::check_range(weed_max_height, 0.0, 3.0, "weed_max_height");
+  core::check_range(weed_max_radius, 0.0, 2.0, "weed_max_radius");
 }
 
 Field generate_row_crop(const RowCropConfig& config, const TerrainConfig& terrain,
@@ -129,7 +131,8 @@ Field generate_row_crop(const RowCropConfig& config, const TerrainConfig& terrai
       field.plants.push_back({q, 0.5 * p.crush_diameter * scale, h, row.id, PlantKind::crop});
     }
   }
-  scatter_weeds(field, config.weeds, p.row_spacing - 0.5 * p.plant_width, rng);
+  scatter_weeds(field, config.weeds, p.row_spacing - 0.5 * p.plant_width,
+                WeedSize{config.weed_max_height, config.weed_max_radius}, rng);
   add_ground(field);
   return field;
 }

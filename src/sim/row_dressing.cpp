@@ -154,11 +154,19 @@ void build_vine_geometry(Field& field, const VineyardConfig& c, std::mt19937_64&
 }
 
 void scatter_weeds(Field& field, WeedLevel level, double corridor_width, std::mt19937_64& rng) {
+  scatter_weeds(field, level, corridor_width, WeedSize{}, rng);
+}
+
+void scatter_weeds(Field& field, WeedLevel level, double corridor_width, const WeedSize& size,
+                   std::mt19937_64& rng) {
   if (level == WeedLevel::none || corridor_width <= 0.05) return;
   const double margin = std::min(0.25, 0.25 * corridor_width);  // [m] kept clear beside the rows
   const bool many = level == WeedLevel::many;
   const double density = many ? 2.0 : 0.4;      // [1/m^2]
-  const double max_height = many ? 0.5 : 0.25;  // [m]
+  const double max_height = size.max_height > 0.0 ? size.max_height : many ? 0.5 : 0.25;  // [m]
+  const double min_radius = 0.05;                                                      // [m]
+  const double max_radius = size.max_radius > 0.0 ? std::max(size.max_radius, min_radius)
+                                                  : min_radius + (many ? 0.2 : 0.1);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (std::size_t k = 0; k + 1 < field.rows.size(); ++k) {
     if (field.rows[k].block != field.rows[k + 1].block) continue;
@@ -169,8 +177,8 @@ void scatter_weeds(Field& field, WeedLevel level, double corridor_width, std::mt
       const double s = u(rng) * path.length();
       const double off = margin + u(rng) * (corridor_width - 2.0 * margin);
       const Eigen::Vector2d p = path.point(s) + off * path.left(s);
-      const double h = 0.04 + u(rng) * (max_height - 0.04);
-      const double r = 0.05 + u(rng) * (many ? 0.2 : 0.1);
+      const double h = 0.04 + u(rng) * (std::max(max_height, 0.04) - 0.04);
+      const double r = min_radius + u(rng) * (max_radius - min_radius);
       field.plants.push_back({p, r, h, -1, PlantKind::weed});
       add_blob(field.mesh, ground_point(field.terrain, p, 0.5 * h),
                Eigen::Vector3f(static_cast<float>(r), static_cast<float>(r),

@@ -78,3 +78,40 @@ TEST(RowCrop, InvalidConfigNamesTheField) {
 
 }  // namespace
 }  // namespace rownav::sim
+
+namespace rownav::sim {
+namespace {
+
+TEST(RowCrop, WeedSizesFollowTheConfigAndDefaultsKeepTheLevelPreset) {
+  RowCropConfig c;
+  c.crop = CropType::cabbage;
+  c.rows = 3;
+  c.row_length = 30.0;
+  c.weeds = WeedLevel::many;
+  const auto weeds = [](const Field& f) {
+    std::vector<Plant> w;
+    for (const auto& p : f.plants)
+      if (p.kind == PlantKind::weed) w.push_back(p);
+    return w;
+  };
+  const Field preset = generate_row_crop(c, TerrainConfig{}, 4);
+  c.weed_max_height = 0.3;
+  c.weed_max_radius = 0.1;
+  const Field sized = generate_row_crop(c, TerrainConfig{}, 4);
+  const auto a = weeds(preset), b = weeds(sized);
+  ASSERT_GT(a.size(), 10u);
+  ASSERT_EQ(a.size(), b.size());  // same draws, other sizes
+  double tallest_a = 0.0, widest_a = 0.0;
+  for (const auto& p : a) tallest_a = std::max(tallest_a, p.height), widest_a = std::max(widest_a, p.radius);
+  for (const auto& p : b) {
+    EXPECT_LE(p.height, 0.3 + 1e-9);
+    EXPECT_LE(p.radius, 0.1 + 1e-9);
+  }
+  EXPECT_GT(tallest_a, 0.3);  // the vineyard-sized preset: up to 0.5 m
+  EXPECT_GT(widest_a, 0.1);
+  c.weed_max_height = -1.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rownav::sim

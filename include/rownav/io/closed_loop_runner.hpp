@@ -81,10 +81,21 @@ struct FrameSample {
   std::vector<double> slope_errors, intercept_errors;    ///< followed rows vs truth
 };
 
+/// A plant the footprint ran over: where, when and in which navigator state (issue 11: "find
+/// where the plants are crushed").
+struct CrushRecord {
+  double stamp = 0.0;           ///< [s] ground-truth sample that first saw it crushed
+  Eigen::Vector2d position;     ///< [m] plant centre, world frame
+  double radius = 0.0;          ///< [m] its crushable radius (stem, head)
+  navigate::NavState state = navigate::NavState::in_row;
+  Eigen::Vector2d robot_xy;     ///< [m] true base position then
+};
+
 /// What a run produced.
 struct RunResult {
   std::vector<int> order;  ///< resolved corridor order
   std::vector<RunSample> samples;
+  std::vector<CrushRecord> crushes;  ///< every plant crushed, in order
   std::vector<FrameSample> frames;
   std::vector<navigate::NavEvent> events;       ///< odom-frame points
   std::vector<Eigen::Vector2d> row_ends_world;  ///< estimated row ends, mapped by the true pose when estimated

@@ -39,6 +39,7 @@ struct RunSummary {
   std::optional<double> line_intercept_error_mean, line_intercept_error_std;
   double sim_time = 0.0, wall_time = 0.0, distance = 0.0;
   std::vector<CorridorMetrics> per_corridor;
+  std::vector<CrushRecord> crushes;  ///< where each crushed plant was (summary.json `crushed`)
 };
 
 /// Path-length ratio of 004 eq. (7) for a driven polyline against a reference polyline: driven

@@ -47,6 +47,10 @@ struct RowCropConfig {
   double curvature_wavelength = 60.0;   ///< [m] wavelength of the bend
   double headland_width = 4.0;          ///< [m] free ground beyond the row ends
   WeedLevel weeds = WeedLevel::none;    ///< inter-row weeds
+  /// [m] tallest weed (0 = the level's preset: some 0.25 m, many 0.5 m, sized for vineyards).
+  /// Malavazi 2018's market garden has weeds the size of its 20 x 20 cm simulator patches.
+  double weed_max_height = 0.0;
+  double weed_max_radius = 0.0;  ///< [m] widest weed (0 = the level's preset, 0.15 / 0.25 m)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -64,6 +68,8 @@ struct RowCropConfig {
     v("curvature_wavelength", s.curvature_wavelength);
     v("headland_width", s.headland_width);
     v("weeds", s.weeds);
+    v("weed_max_height", s.weed_max_height);
+    v("weed_max_radius", s.weed_max_radius);
   }
   void validate() const;
   /// The dimensions in effect: the fields, with 0 replaced by the crop preset.

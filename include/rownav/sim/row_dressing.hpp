@@ -43,6 +43,16 @@ void build_vine_geometry(Field& field, const VineyardConfig& config, std::mt1993
 /// wide. Densities: some = 0.4 / m^2 up to 0.25 m tall, many = 2 / m^2 up to 0.5 m.
 void scatter_weeds(Field& field, WeedLevel level, double corridor_width, std::mt19937_64& rng);
 
+/// Weed sizes overriding a level's preset (0 keeps the preset: some <= 0.25 m tall, many
+/// <= 0.5 m; radius <= 0.15 / 0.25 m).
+struct WeedSize {
+  double max_height = 0.0;  ///< [m]
+  double max_radius = 0.0;  ///< [m]
+};
+/// scatter_weeds with the sizes of `size`.
+void scatter_weeds(Field& field, WeedLevel level, double corridor_width, const WeedSize& size,
+                   std::mt19937_64& rng);
+
 /// Appends the terrain mesh under the rows' bounds grown by field.headland_width on every side.
 /// The cell is coarsened when needed to keep the ground under `max_triangles`.
 void add_ground(Field& field, std::size_t max_triangles = 400000);

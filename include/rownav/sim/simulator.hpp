@@ -72,8 +72,11 @@ class Simulator {
   double dt() const { return dt_; }
   const RobotState& robot_state() const { return robot_.state(); }
   const Robot& robot() const { return robot_; }
+  const Field& field() const { return field_; }
   /// Ground truth of the last step.
   const GroundTruth& ground_truth() const { return truth_now_; }
+  /// Indices into the field's plants, in the order the footprint crushed them.
+  const std::vector<int>& crushed_plants() const { return crush_.crushed_indices(); }
   const FieldTruth& field_truth() const { return truth_; }
   const RayCaster& world() const { return caster_; }
   const Lidar& lidar() const { return lidar_; }
