@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <utility>
 
 #include "rownav/io/yaml_config.hpp"
 
@@ -35,6 +36,13 @@ std::string settings_text(const std::vector<std::string>& paths, const BenchCell
   s += std::to_string(c.seed) + "\n" + detail::yaml_format_double(c.time_limit) + "\n";
   for (const auto& a : c.extra_args) s += a + "\n";
   return s;
+}
+
+// The matrix's config files join the id's settings only when given (older ids unchanged).
+std::vector<std::string> with_configs(std::vector<std::string> paths, const BenchMatrixSpec& m) {
+  if (!m.nav_config.empty()) paths.push_back("nav:" + m.nav_config);
+  if (!m.detect_config.empty()) paths.push_back("detect:" + m.detect_config);
+  return paths;
 }
 
 std::string make_id(const std::vector<std::string>& paths, const BenchCell& c) {
@@ -73,7 +81,15 @@ void expand_matrix(const BenchScenario& s, const BenchMatrixSpec& m, std::vector
                     c.seed = seed;
                     c.time_limit = m.time_limit;
                     c.extra_args = m.extra_args;
-                    c.id = make_id({field, robot, sensor, mission}, c);
+                    std::vector<std::string> paths = {field, robot, sensor, mission};
+                    c.id = make_id(with_configs(paths, m), c);
+                    // Config files resolved like the others (after the id: settings as written).
+                    for (const auto& [opt, file] :
+                         {std::pair{"--nav-config", m.nav_config},
+                          std::pair{"--detect-config", m.detect_config}})
+                      if (!file.empty())
+                        c.extra_args.insert(c.extra_args.end(),
+                                            {opt, (s.base_dir / file).string()});
                     const auto [it, added] = index.emplace(c.id, out.size());
                     if (added) out.push_back(std::move(c));
                     BenchCell& cell = out[it->second];

@@ -2,12 +2,14 @@
 #include "rownav/io/bench_tables.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <numeric>
 #include <set>
 
 #include "rownav/io/input_error.hpp"
+#include "rownav/io/paper_figures.hpp"
 
 namespace rownav::io {
 
@@ -66,11 +68,20 @@ void add_malavazi(const std::vector<RunResult>& all, std::vector<ResultTable>& o
                   "004 Tables 1-3 (Malavazi 2018): " + field,
                   {"detector", "variant"},
                   {"runs", "success [%]", "success, no plant crushed [%]", "path-length ratio mean",
-                   "path-length ratio max", "path-length ratio min"},
+                   "path-length ratio max", "path-length ratio min", "paper success [%]",
+                   "paper no crush [%]", "paper ratio mean"},
                   {},
                   1};
     for (const auto& g : groups) {
       if (g.labels[0] != field) continue;
+      const auto level = weed_level_of(field);
+      const auto paper = level ? malavazi_2018_figures(*level, g.labels[1],
+                                                       g.labels[2] != "unfiltered")
+                               : std::nullopt;
+      const auto fig = [&](double MalavaziFigures::*m) -> std::optional<double> {
+        if (!paper || !std::isfinite((*paper).*m)) return std::nullopt;
+        return (*paper).*m;
+      };
       t.rows.push_back({{g.labels[1], g.labels[2]},
                         {double(g.runs.size()),
                          rate(g.runs, [](const auto& s) { return is_true(s, "success"); }),
@@ -80,7 +91,9 @@ void add_malavazi(const std::vector<RunResult>& all, std::vector<ResultTable>& o
                               }),
                          aggregate(g.runs, "path_length_ratio_mean", Aggregate::mean),
                          aggregate(g.runs, "path_length_ratio_max", Aggregate::max),
-                         aggregate(g.runs, "path_length_ratio_min", Aggregate::min)}});
+                         aggregate(g.runs, "path_length_ratio_min", Aggregate::min),
+                         fig(&MalavaziFigures::success), fig(&MalavaziFigures::success_no_crush),
+                         fig(&MalavaziFigures::ratio_mean)}});
     }
     out.push_back(std::move(t));
   }

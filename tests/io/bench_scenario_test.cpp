@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <set>
 
@@ -115,7 +117,15 @@ TEST(BenchScenario, RepositoryScenariosAndFieldsLoad) {
   const auto quick = expand_scenario(load_scenario(src / "bench/scenarios/quick.yaml", false));
   EXPECT_EQ(quick.size(), 4u);  // as stated in quick.yaml
   const auto full = expand_scenario(load_scenario(src / "bench/scenarios/full.yaml", false));
-  EXPECT_EQ(full.size(), 280u);  // as stated in full.yaml
+  EXPECT_EQ(full.size(), 520u);  // as stated in full.yaml
+  const auto malavazi =
+      expand_scenario(load_scenario(src / "bench/scenarios/malavazi.yaml", false));
+  ASSERT_EQ(malavazi.size(), 240u);  // 4 detectors x 2 variants x 3 levels x 10 seeds
+  const auto& args = malavazi.front().extra_args;  // config files resolved against the root
+  const auto nav = std::find(args.begin(), args.end(), "--nav-config");
+  ASSERT_NE(nav, args.end());
+  ASSERT_NE(nav + 1, args.end());
+  EXPECT_TRUE(fs::exists(*(nav + 1))) << *(nav + 1);
   for (const auto& e : fs::directory_iterator(src / "bench/fields"))
     EXPECT_NO_THROW(load_config<sim::FieldConfig>(e.path())) << e.path();
 }

@@ -34,7 +34,7 @@ TEST(ConfigFiles, RobotsLoadStrictly) {
 
 TEST(ConfigFiles, NavigateLoadStrictlyAndVineyardIsTheDefaults) {
   const auto files = yaml_files("navigate");
-  ASSERT_EQ(files.size(), 3u);  // vineyard, orchard, row_crop
+  ASSERT_EQ(files.size(), 4u);  // vineyard, orchard, row_crop, market_garden
   for (const auto& f : files) EXPECT_NO_THROW(load_config<navigate::NavStackConfig>(f)) << f;
   const fs::path dir = fs::path(ROWNAV_SOURCE_DIR) / "config/navigate";
   // The demo runs on vineyard.yaml: it must be exactly the built-in defaults.
@@ -47,6 +47,10 @@ TEST(ConfigFiles, NavigateLoadStrictlyAndVineyardIsTheDefaults) {
   const auto maize = load_config<navigate::NavStackConfig>(dir / "row_crop.yaml");
   EXPECT_GT(orchard.end_of_row.band_z_min, navigate::EndOfRowConfig{}.band_z_min);
   EXPECT_LT(maize.end_of_row.band_z_min, navigate::EndOfRowConfig{}.band_z_min);
+  // The weeding robot's low 2D scanner drives over what it sees between the rows (issue 11).
+  const auto garden = load_config<navigate::NavStackConfig>(dir / "market_garden.yaml");
+  EXPECT_FALSE(garden.stack.planar_obstacles);
+  EXPECT_TRUE(maize.stack.planar_obstacles);
 }
 
 TEST(ConfigFiles, PathsLoadStrictly) {

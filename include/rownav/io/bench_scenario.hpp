@@ -38,6 +38,8 @@ struct BenchMatrixSpec {
   int seed_count = 0;                         ///< [-] seeds 1..seed_count (instead of seeds)
   double time_limit = 300.0;                  ///< [s] simulated time limit of every run
   std::vector<std::string> extra_args;        ///< appended verbatim to every run's options
+  std::string nav_config;     ///< `--nav-config` file of every run (empty: the crop's default)
+  std::string detect_config;  ///< `--detect-config` file of every run (empty: the crop's)
   std::vector<BenchTable> tables;             ///< tables these runs feed
 
   template <class S, class V>
@@ -55,6 +57,8 @@ struct BenchMatrixSpec {
     v("seed_count", s.seed_count);
     v("time_limit", s.time_limit);
     v("extra_args", s.extra_args);
+    v("nav_config", s.nav_config);
+    v("detect_config", s.detect_config);
     v("tables", s.tables);
   }
   void validate() const;
