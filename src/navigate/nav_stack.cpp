@@ -168,12 +168,12 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
 }
 
 void NavStack::estimate_place(const Pending& frame, FrameReport& r, const core::Pose2& T) {
-  // Emmi 2021's d starts from the lane width: the tracker's measured row spacing, taken in a
-  // lane only (across the headland the tracker sees row ends and partial rows).
-  if (config_.place.lane_width_from_tracker && r.tracking &&
-      r.tracking->status == track::TrackStatus::tracking && r.tracking->row_spacing > 0.0 &&
-      place_->place() == map::Place::lane)
-    place_->set_lane_width(r.tracking->row_spacing);
+  // Emmi 2021's d starts from the lane width: the tracker's row spacing while it follows the
+  // rows on both sides (not only in a lane: the first entry needs it; issue 12, BENCHMARK.md).
+  const auto& t = r.tracking;
+  if (config_.place.lane_width_from_tracker && t && t->status == track::TrackStatus::tracking &&
+      t->left >= 0 && t->right >= 0 && t->row_spacing > 0.0)
+    place_->set_lane_width(t->row_spacing);
   const auto& p = *parts_.pipeline;
   if (std::holds_alternative<core::Scan2D>(frame.data))
     place_input_.collect(p.last_points(), r.observation);

@@ -156,14 +156,14 @@ TEST(NavStackPlace, TheLaneWidthIsTheTrackersRowSpacing) {
   NavStack s = make_stack(true, 1.0);  // a priori 1 m; the rows are 1.8 m apart
   const auto cmds = drive(s, Input::labelled_cloud);
   ASSERT_NE(s.place_estimator(), nullptr);
-  // The last spacing the tracker measured while tracking in the lane (the raw corridor
-  // tracker's is face to face here: the plants' near sides, 2 x 0.12 m less than 1.8 m).
+  // The last spacing the tracker measured following both rows (the raw corridor tracker's is
+  // face to face here: the plants' near sides, 2 x 0.12 m less than 1.8 m).
   double measured = 0.0;
-  for (std::size_t i = 1; i < cmds.size(); ++i) {
-    const auto& f = cmds[i].frame;
-    if (cmds[i - 1].place == map::Place::lane && f && f->tracking &&
-        f->tracking->status == track::TrackStatus::tracking && f->tracking->row_spacing > 0.0)
-      measured = f->tracking->row_spacing;
+  for (const auto& c : cmds) {
+    const auto& t = c.frame ? c.frame->tracking : std::nullopt;
+    if (t && t->status == track::TrackStatus::tracking && t->left >= 0 && t->right >= 0 &&
+        t->row_spacing > 0.0)
+      measured = t->row_spacing;
   }
   EXPECT_GT(measured, 1.4);
   EXPECT_DOUBLE_EQ(s.place_estimator()->config().key_locations.lane_width, measured);

@@ -36,9 +36,9 @@ struct PlaceConfig {
   /// [m] geometric default labels: a point this far beyond a detected row's half width (or its
   /// line when the half width is unknown) is still the row (rownav; vine shoots, point noise)
   double row_margin = 0.15;
-  /// use the tracker's measured row spacing (status tracking, the map stage's place a lane) as
-  /// the lane width: estimator.key_locations.lane_width is only the a priori value until then,
-  /// e.g. for the first entry (never a constant tuned to one field)
+  /// use the tracker's measured row spacing (status tracking, rows followed on both sides) as
+  /// the lane width: estimator.key_locations.lane_width is only the a priori value until the
+  /// tracker measured one (never a constant tuned to one field)
   bool lane_width_from_tracker = true;
   map::PlaceEstimatorConfig estimator;  ///< the map stage itself (map/place_estimator.hpp)
 
