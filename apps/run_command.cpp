@@ -93,8 +93,13 @@ void print_summary(const io::RunSummary& s, const RunArgs& a) {
             << " m\n"
             << "simulated " << std::fixed << std::setprecision(1) << s.sim_time << " s in "
             << s.wall_time << " s wall, " << s.distance << " m driven; frame latency median "
-            << show(s.frame_latency_median_ms) << " ms\n"
-            << "wrote " << (a.out / "summary.json").string() << " and "
+            << show(s.frame_latency_median_ms) << " ms\n";
+  if (s.place.frames > 0)
+    std::cout << "map stage: place accuracy " << show(s.place.accuracy) << " over "
+              << s.place.frames << " frames; " << s.place.keys.size()
+              << " key locations, error median " << show(s.place.key_error_median) << " m, max "
+              << show(s.place.key_error_max) << " m\n";
+  std::cout << "wrote " << (a.out / "summary.json").string() << " and "
             << (a.out / "report.html").string() << "\n";
 }
 
@@ -114,6 +119,11 @@ bool run_mission(const RunArgs& a) {
   s.mission = io::load_mission(a.mission);
   load_nav_stack(a, field_config, s);
   if (a.row_end_policy) s.nav.navigator.row_ends.policy = *a.row_end_policy;
+  if (a.place) s.nav.place.enabled = true;
+  s.truth_labels = a.labels == "truth";
+  s.labeller.false_positive_rate = a.label_fp;
+  s.labeller.false_negative_rate = a.label_fn;
+  s.labeller.validate();
   s.detect_config =
       crop_config_for(a, field_config, a.detect_config, "detect", "--detect-config");
   s.detector = a.detector.empty() ? io::default_detector(s.detect_config) : a.detector;
@@ -195,6 +205,12 @@ void add_run_command(CLI::App& app) {
                 "faults YAML (config/faults): its `faults:` section (sim::FaultsConfig) replaces "
                 "the sensors' one; writes faults.json")
       ->check(CLI::ExistingFile);
+  c->add_flag("--place", a->place, "run the map stage (Emmi 2021 place, key locations; "
+              "navigate config `place.enabled`)");
+  c->add_option("--labels", a->labels, "map stage labels: truth (default) or geometric")
+      ->check(CLI::IsMember({"truth", "geometric"}));
+  c->add_option("--label-fp", a->label_fp, "truth labels' false-positive rate (default 0)");
+  c->add_option("--label-fn", a->label_fn, "truth labels' false-negative rate (default 0)");
   c->add_option("--seed", a->seed, "simulation seed (default 1)");
   c->add_option("--time-limit", a->time_limit, "[s] simulated time limit (default 1800)");
   c->add_option("--lead-in", a->lead_in,

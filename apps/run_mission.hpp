@@ -22,6 +22,11 @@ struct RunArgs {
   std::string tracker = "model_filter";
   std::string controller = "stanley";
   std::optional<navigate::RowEndPolicy> row_end_policy;  ///< overrides the navigator config
+  /// map stage (issue 12): `--place` turns it on over the navigation config; labels `truth`
+  /// (sim::TruthLabeller, with the false-positive / false-negative rates) or `geometric`
+  bool place = false;
+  std::string labels = "truth";
+  double label_fp = 0.0, label_fn = 0.0;  ///< [-] truth labeller error rates
   std::uint64_t seed = 1;
   double time_limit = 1800.0;  ///< [s] simulated
   std::optional<double> lead_in;  ///< [m] start before the first corridor (runner default)

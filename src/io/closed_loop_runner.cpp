@@ -59,15 +59,19 @@ class InputLog {
 /// Hands the simulator's samples to the stack (and the input log) and collects the metrics.
 class RunnerSink : public sim::SimSink {
  public:
-  RunnerSink(navigate::NavStack& stack, const sim::Simulator& sim, const sim::Field& field,
+  RunnerSink(navigate::NavStack& stack, const sim::Simulator& sim, const ClosedLoopSetup& setup,
              RunResult& result, InputLog* log)
-      : stack_(stack), sim_(sim), result_(result), log_(log) {
+      : stack_(stack), sim_(sim), result_(result), log_(log),
+        T_base_lidar_(setup.sensors.lidar.T_base_lidar().cast<float>()) {
+    const sim::Field& field = *setup.field;
+    if (setup.nav.place.enabled && setup.truth_labels)
+      labeller_.emplace(setup.labeller, setup.sensors.seed + kLabellerSeedOffset);
     for (const auto& p : field.plants)
       if (p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post) posts_.push_back(p);
   }
-  void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>&) override {
+  void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>& classes) override {
     if (log_) log_->cloud(c);
-    stack_.on_cloud(c);
+    stack_.on_cloud(c, labels(c, classes));
   }
   void on_scan(const core::Scan2D& s, const std::vector<sim::SurfaceClass>&) override {
     if (log_) log_->scan(s);
@@ -118,10 +122,26 @@ class RunnerSink : public sim::SimSink {
     }
   }
 
+  /// Truth labels of a sweep's points (empty without a labeller: the stack's default).
+  std::vector<map::PointLabel> labels(const core::PointCloud& c,
+                                      const std::vector<sim::SurfaceClass>& classes) {
+    std::vector<map::PointLabel> out;
+    if (!labeller_) return out;
+    points_base_.clear();
+    for (const auto& p : c.points) points_base_.push_back(T_base_lidar_ * Eigen::Vector3f(p.x, p.y, p.z));
+    labeller_->set_frame(sim_.robot_state().pose, classes);
+    labeller_->label(points_base_, out);
+    return out;
+  }
+
+  static constexpr std::uint64_t kLabellerSeedOffset = 7919;  // its own noise stream
   navigate::NavStack& stack_;
   const sim::Simulator& sim_;
   RunResult& result_;
   InputLog* log_;
+  Eigen::Isometry3f T_base_lidar_;
+  std::optional<sim::TruthLabeller> labeller_;
+  std::vector<Eigen::Vector3f> points_base_;
   std::vector<sim::Plant> posts_;
   navigate::NavState state = navigate::NavState::in_row;
   int planned = -1;
@@ -174,6 +194,10 @@ void record(navigate::NavCommand& out, const navigate::NavStack& stack, const si
   for (std::size_t k = result.row_ends_world.size(); k < ends.size(); ++k)
     result.row_ends_world.push_back(sim.robot_state().pose * (T.inverse() * ends[k]));
   result.served = out.served;
+  if (out.frame && out.frame->place)
+    result.places.push_back({out.stamp, out.place, sim.ground_truth().place});
+  for (const auto& k : out.key_locations)
+    result.key_locations.push_back({k, sim.robot_state().pose * (T.inverse() * k.key.p)});
 }
 
 }  // namespace
@@ -231,7 +255,7 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   sim::Simulator sim(*setup.field, setup.robot, setup.sensors, start);
   std::optional<InputLog> log;
   if (!setup.record_inputs.empty()) log.emplace(setup.record_inputs);
-  RunnerSink sink(stack, sim, *setup.field, result, log ? &*log : nullptr);
+  RunnerSink sink(stack, sim, setup, result, log ? &*log : nullptr);
   const auto wall0 = Clock::now();
   core::Twist2 cmd;
   double next_progress = 0.0;

@@ -187,6 +187,7 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
     ends.add(best);
   }
   r.row_end_error_mean = ends.mean(), r.row_end_error_max = ends.hi();
+  r.place = place_metrics(run, truth, block);
   r.sim_time = run.sim_time, r.wall_time = run.wall_time;
   // Every planned corridor driven end to end in the planned order (the navigator's own count,
   // run.served, could include a corridor left early on a false row end).

@@ -62,6 +62,9 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
       {"row ends (estimated)", Style{Color::hex("#d62728"), Color::hex("#d62728"), 1.0, true}});
   if (!run.crushes.empty())
     o.extra_legend.push_back({"plant crushed", Style{Color::hex("#000000"), {}, 2.0}});
+  const Color key_colour = Color::hex("#9467bd");  // the map stage's key locations (issue 12)
+  if (!run.key_locations.empty())
+    o.extra_legend.push_back({"key locations (map)", Style{key_colour, key_colour, 1.0, true}});
   draw_field(canvas, field, o);
   std::vector<Eigen::Vector2d> seg;
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
@@ -76,6 +79,7 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
   for (const auto& p : run.row_ends_world) canvas.dot(p, 4.0, Color::hex("#d62728"));
   for (const auto& c : run.crushes)  // a ring round each crushed plant, at least 0.15 m
     canvas.circle(c.position, std::max(c.radius, kCrushRingMin), Style{Color::hex("#000000"), {}, 2.0});
+  for (const auto& k : run.key_locations) canvas.dot(k.world, 3.0, key_colour);
 }
 
 /// Lateral error and speed over the driven distance; headland parts shaded.
@@ -211,6 +215,14 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
                                  {"max_displacement", c.max_displacement},
                                  {"path_length_ratio", c.path_length_ratio},
                                  {"heading_rmse_deg", c.heading_rmse_deg}});
+  j["place_frames"] = s.place.frames;
+  j["place_accuracy"] = num(s.place.accuracy);
+  j["key_location_error_median"] = num(s.place.key_error_median);
+  j["key_location_error_max"] = num(s.place.key_error_max);
+  j["key_locations"] = json::array();
+  for (const auto& k : s.place.keys)
+    j["key_locations"].push_back({{"from", k.from}, {"to", k.to}, {"x", k.world.x()},
+                                  {"y", k.world.y()}, {"error", k.error}});
   return j.dump(2);
 }
 

@@ -117,6 +117,16 @@ void KeyLocator::reset() {
   last_ = {};
 }
 
+bool KeyLocator::set_lane_width(double lane_width) {
+  if (!std::isfinite(lane_width) || lane_width <= 0.0) return false;
+  const double d0 = 0.5 * lane_width;
+  // d keeps what the centroids measured, within the bounds of the new a priori width.
+  d_ = std::clamp(d_ * lane_width / config_.lane_width, config_.min_width_ratio * d0,
+                  config_.max_width_ratio * d0);
+  config_.lane_width = lane_width;
+  return true;
+}
+
 void KeyLocator::update_width(const SideRows& sides, const core::Pose2& T) {
   if (!sides.left || !sides.right) return;
   // Emmi 2021: d from the centroids of the left and right rows nearest the robot (measured

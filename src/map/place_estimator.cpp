@@ -47,6 +47,12 @@ void PlaceEstimator::reset() {
   last_pose_.reset();
 }
 
+bool PlaceEstimator::set_lane_width(double lane_width) {
+  if (!keys_.set_lane_width(lane_width)) return false;
+  config_.key_locations.lane_width = lane_width;
+  return true;
+}
+
 PlaceEstimate PlaceEstimator::update(const std::vector<Eigen::Vector3f>& points_base,
                                      const std::vector<PointLabel>& labels,
                                      const core::Pose2& T_odom_base, double stamp) {

@@ -36,6 +36,7 @@ bool accept(double stamp, double& last, std::uint64_t& accepted, std::uint64_t& 
 
 struct NavStack::Pending {
   std::variant<core::PointCloud, core::Scan2D> data;
+  std::vector<map::PointLabel> labels;  // per cloud point, for the map stage (may be empty)
   double stamp() const {
     return std::visit([](const auto& d) { return d.stamp; }, data);
   }
@@ -46,8 +47,8 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
     : config_(config),
       parts_(std::move(parts)),
       localizer_(config.localizer),
-      external_(config.stack.odometry_history, config.stack.max_extrapolation) {
-  config_.validate();
+      external_(config.stack.odometry_history, config.stack.max_extrapolation),
+      place_input_((config.validate(), config.place)) {
   const StackMode mode = config_.stack.mode;
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
@@ -60,6 +61,8 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
   config_.stack.front.robot_width = config_.robot.width;
   config_.stack.front.front_x = config_.robot.base_to_front;
   sweep_period_ = config_.stack.sweep_period;
+  if (config_.place.enabled)
+    place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
 }
 
 NavStack::~NavStack() = default;
@@ -106,12 +109,13 @@ bool NavStack::accept_frame(double t) {
   return true;
 }
 
-void NavStack::on_cloud(core::PointCloud cloud) {
-  if (accept_frame(cloud.stamp)) pending_ = std::make_unique<Pending>(Pending{std::move(cloud)});
+void NavStack::on_cloud(core::PointCloud cloud, std::vector<map::PointLabel> labels) {
+  if (accept_frame(cloud.stamp))
+    pending_ = std::make_unique<Pending>(Pending{std::move(cloud), std::move(labels)});
 }
 
 void NavStack::on_scan(core::Scan2D scan) {
-  if (accept_frame(scan.stamp)) pending_ = std::make_unique<Pending>(Pending{std::move(scan)});
+  if (accept_frame(scan.stamp)) pending_ = std::make_unique<Pending>(Pending{std::move(scan), {}});
 }
 
 std::optional<core::Pose2> NavStack::T_odom_base(double stamp) const {
@@ -162,10 +166,26 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
   const auto T_frame = T_odom_base(r.stamp);
   if (!T_frame && !T) return r;  // no odometry yet: nothing to track against
   r.tracking = parts_.tracker->update(r.observation, T_frame ? *T_frame : *T);
+  if (place_) estimate_place(frame, r, T_frame ? *T_frame : *T);
   if (config_.stack.mode == StackMode::track) return r;
   const auto& p = *parts_.pipeline;
   r.end_of_row = end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking);
   return r;
+}
+
+void NavStack::estimate_place(const Pending& frame, FrameReport& r, const core::Pose2& T) {
+  // Emmi 2021's d starts from the lane width: the tracker's row spacing while it follows the
+  // rows on both sides (not only in a lane: the first entry needs it; issue 12, BENCHMARK.md).
+  const auto& t = r.tracking;
+  if (config_.place.lane_width_from_tracker && t && t->status == track::TrackStatus::tracking &&
+      t->left >= 0 && t->right >= 0 && t->row_spacing > 0.0)
+    place_->set_lane_width(t->row_spacing);
+  const auto& p = *parts_.pipeline;
+  if (std::holds_alternative<core::Scan2D>(frame.data))
+    place_input_.collect(p.last_points(), r.observation);
+  else
+    place_input_.collect(p.last_cloud_base(), p.last_ground(), frame.labels, r.observation);
+  r.place = place_->update(place_input_.points(), place_input_.labels(), T, r.stamp);
 }
 
 NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameReport& report) {
@@ -239,6 +259,8 @@ NavCommand NavStack::command(double stamp) {
       out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
     last_frame_stamp_ = report.stamp;
     report.latency = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (report.place)
+      if (auto k = validated_key(*place_, *report.place)) c.key_locations.push_back(*k);
     c.frame = std::move(report);
   } else {
     out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
@@ -262,6 +284,7 @@ NavCommand NavStack::command(double stamp) {
   c.corridor = out.corridor;
   c.served = out.served;
   c.events = std::move(out.events);
+  if (place_) c.place = place_->place();
   return c;
 }
 

@@ -5,7 +5,10 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+
+#include "rownav/map/place_estimator.hpp"
 
 #include "map/map_scene.hpp"
 
@@ -129,6 +132,28 @@ TEST_F(KeyRules, EntryOrientationGateCanBeTurnedOff) {
   const KeyLocator loose(cfg);
   EXPECT_EQ(loose.check(key(3.0, 0.0, 30.0, KeyType::entry), robot), KeyVerdict::valid);
   EXPECT_EQ(locator.check(key(3.0, 0.0, 30.0, KeyType::entry), robot), KeyVerdict::misoriented);
+}
+
+TEST(KeyLocation, SetLaneWidthRescalesDWithinTheNewBounds) {
+  KeyLocationConfig cfg;  // a priori 1 m: d = 0.5 m
+  KeyLocator locator(cfg);
+  EXPECT_DOUBLE_EQ(locator.half_width(), 0.5);
+  EXPECT_TRUE(locator.set_lane_width(1.8));  // a measured row spacing
+  EXPECT_DOUBLE_EQ(locator.half_width(), 0.9);
+  EXPECT_DOUBLE_EQ(locator.config().lane_width, 1.8);
+  locator.reset();  // a new local frame starts from the new a priori width
+  EXPECT_DOUBLE_EQ(locator.half_width(), 0.9);
+  for (const double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+    EXPECT_FALSE(locator.set_lane_width(bad)) << bad;
+  EXPECT_DOUBLE_EQ(locator.config().lane_width, 1.8);
+}
+
+TEST(PlaceEstimator, SetLaneWidthReachesTheKeyLocations) {
+  PlaceEstimator est;
+  EXPECT_TRUE(est.set_lane_width(2.5));
+  EXPECT_DOUBLE_EQ(est.config().key_locations.lane_width, 2.5);
+  EXPECT_FALSE(est.set_lane_width(std::nan("")));
+  EXPECT_DOUBLE_EQ(est.config().key_locations.lane_width, 2.5);
 }
 
 TEST(KeyLocation, ConfigValidationNamesTheField) {

@@ -19,6 +19,7 @@
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/robot.hpp"
 #include "rownav/sim/simulator.hpp"
+#include "rownav/sim/truth_labeller.hpp"
 #include "rownav/track/row_tracker.hpp"
 
 namespace rownav::io {
@@ -48,6 +49,11 @@ struct ClosedLoopSetup {
   /// and the samples show where (the fault runs of issue 13: the clearance to a person)
   double settle = 0.0;
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
+  /// The map stage's labels (nav.place.enabled): every sweep's points labelled from the
+  /// simulator's truth by sim::TruthLabeller with `labeller`'s false-positive / negative rates
+  /// (a stand-in for Emmi 2021's camera detector, Fig. 2b); false: NavStack's geometric default
+  bool truth_labels = true;
+  sim::TruthLabellerConfig labeller;
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
 };
 
@@ -91,6 +97,20 @@ struct CrushRecord {
   Eigen::Vector2d robot_xy;     ///< [m] true base position then
 };
 
+/// Per LiDAR frame with the map stage on: its validated place against the truth.
+struct PlaceSample {
+  double stamp = 0.0;
+  map::Place estimated = map::Place::unknown;  ///< NavCommand::place
+  sim::Place truth = sim::Place::outside;
+};
+
+/// A key location the map stage validated, mapped into the world by the robot's true pose at
+/// validation (as the row ends: the error is that of the estimate relative to the robot).
+struct KeyLocationSample {
+  navigate::PlaceKey key;  ///< odom frame
+  Eigen::Vector2d world = Eigen::Vector2d::Zero();  ///< [m]
+};
+
 /// What a run produced.
 struct RunResult {
   std::vector<int> order;  ///< resolved corridor order
@@ -106,6 +126,8 @@ struct RunResult {
   core::Pose2 T_world_odom;  ///< truth of the odom frame (start pose)
   double sim_time = 0.0, wall_time = 0.0;
   std::vector<std::pair<int, int>> entries;  ///< (planned, true corridor) at each entry
+  std::vector<PlaceSample> places;            ///< empty: map stage off
+  std::vector<KeyLocationSample> key_locations;
 };
 
 /// Start pose at the entrance of `order[0]`, facing along it so that the next corridor of the

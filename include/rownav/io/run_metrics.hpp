@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rownav/io/closed_loop_runner.hpp"
+#include "rownav/io/place_metrics.hpp"
 #include "rownav/sim/field_truth.hpp"
 
 namespace rownav::io {
@@ -40,6 +41,7 @@ struct RunSummary {
   double sim_time = 0.0, wall_time = 0.0, distance = 0.0;
   std::vector<CorridorMetrics> per_corridor;
   std::vector<CrushRecord> crushes;  ///< where each crushed plant was (summary.json `crushed`)
+  PlaceMetrics place;  ///< the map stage (issue 12); empty when it was off
 };
 
 /// Path-length ratio of 004 eq. (7) for a driven polyline against a reference polyline: driven

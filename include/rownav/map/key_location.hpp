@@ -115,6 +115,9 @@ class KeyLocator {
     return last_[static_cast<std::size_t>(t)];
   }
   double half_width() const { return d_; }
+  /// Replaces the a priori lane width (e.g. by a measured row spacing): d is scaled by the
+  /// ratio and kept within the new bounds. False (nothing changed) unless finite and > 0.
+  bool set_lane_width(double lane_width);
   /// New local frame: forget the valid key locations, d back to the a priori value.
   void reset();
   const KeyLocationConfig& config() const { return config_; }

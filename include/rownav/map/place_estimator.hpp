@@ -86,6 +86,9 @@ class PlaceEstimator {
                        double stamp);
   /// Starts again: map, frames, filter (the next update defines F_f).
   void reset();
+  /// The a priori lane width d starts from (KeyLocationConfig::lane_width), e.g. the row
+  /// spacing a row tracker measured; false (ignored) unless finite and > 0. Never throws.
+  bool set_lane_width(double lane_width);
   Place place() const { return place_; }
   const TopologicalMap& map() const { return map_; }
   const std::vector<RowCluster>& rows() const { return clusters_.rows(); }

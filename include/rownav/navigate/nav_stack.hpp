@@ -4,7 +4,8 @@
 ///
 /// NavStack owns the chain sensor samples -> localize (wheel odometry + IMU EKF, or an external
 /// odometry) -> gravity levelling -> detection pipeline -> tracker -> end of row -> navigator ->
-/// controller (dt, obstacle distance) -> velocity limits. The simulator runner, the ROS node,
+/// controller (dt, obstacle distance) -> velocity limits, and beside the chain, when
+/// PlaceConfig::enabled, the map stage (Emmi 2021: place, key locations, topological map). The simulator runner, the ROS node,
 /// `rownav track`, `rownav detect` and the test harnesses only convert their input and call it,
 /// the way kiss-icp's ROS wrapper only calls its pipeline class.
 ///
@@ -25,8 +26,10 @@
 #include "rownav/detect/pipeline.hpp"
 #include "rownav/localize/localizer.hpp"
 #include "rownav/localize/pose_history.hpp"
+#include "rownav/map/place_estimator.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
 #include "rownav/navigate/navigator.hpp"
+#include "rownav/navigate/place_input.hpp"
 #include "rownav/track/row_tracker.hpp"
 
 namespace rownav::navigate {
@@ -44,6 +47,8 @@ struct FrameReport {
   core::RowObservation observation;        ///< detector output (base frame)
   std::optional<track::RowTracking> tracking;  ///< nullopt: no odometry at the frame, or detect mode
   EndOfRowResult end_of_row;
+  /// the map stage's estimate of this frame (nullopt: disabled, detect mode or no odometry)
+  std::optional<map::PlaceEstimate> place;
   bool levelled = false;  ///< the sweep was levelled by the IMU's gravity
   double latency = 0.0;   ///< [s] wall time of the frame through the chain
 };
@@ -61,6 +66,9 @@ struct NavCommand {
   int served = 0;
   std::vector<NavEvent> events;       ///< what happened in this call
   std::optional<FrameReport> frame;   ///< the LiDAR frame processed in this call, if any
+  /// the map stage's validated place (Emmi 2021 Table 1; unknown when disabled)
+  map::Place place = map::Place::unknown;
+  std::vector<PlaceKey> key_locations;  ///< key locations validated in this call (odom frame)
   InputHealth health = InputHealth::ok;  ///< not ok: the command is zero until inputs are fresh
   double lidar_age = 0.0;     ///< [s] since the newest LiDAR frame was complete (inf: none yet)
   double odometry_age = 0.0;  ///< [s] since the newest odometry sample (inf: none yet)
@@ -99,7 +107,9 @@ class NavStack {
   /// dropped (not newer than the newest, or not finite).
   bool on_odometry(const localize::StampedPose& s);
   /// A 3D sweep in the LiDAR frame (per-point times); processed by the next command().
-  void on_cloud(core::PointCloud cloud);
+  /// `labels`: optional semantic labels for the map stage, one per point in the cloud's order
+  /// (a camera detector, the simulator's truth); empty: the geometric default (place_input.hpp).
+  void on_cloud(core::PointCloud cloud, std::vector<map::PointLabel> labels = {});
   /// A 2D scan in the LiDAR frame; processed by the next command().
   void on_scan(core::Scan2D scan);
   /// The command at `stamp`: processes the pending frame if there is one, else refreshes the
@@ -116,11 +126,14 @@ class NavStack {
   const localize::Localizer& localizer() const { return localizer_; }
   const NavStackStats& stats() const { return stats_; }
   const NavStackConfig& config() const { return config_; }
+  /// The map stage (null when PlaceConfig::enabled is false).
+  const map::PlaceEstimator* place_estimator() const { return place_.get(); }
 
  private:
   struct Pending;
   FrameReport process_frame(Pending& frame, const std::optional<core::Pose2>& T);
   core::RowObservation detect_frame(Pending& frame, bool& levelled);
+  void estimate_place(const Pending& frame, FrameReport& report, const core::Pose2& T);
   NavOutput navigate_frame(double stamp, const core::Pose2& T, FrameReport& report);
   void measure_period(double frame_stamp);
   bool accept_frame(double frame_stamp);  // false: dropped (late, duplicate, not finite)
@@ -135,8 +148,10 @@ class NavStack {
   NavStackParts parts_;
   std::unique_ptr<EndOfRowDetector> end_of_row_;
   std::unique_ptr<Navigator> navigator_;
+  std::unique_ptr<map::PlaceEstimator> place_;  // null: map stage disabled
   localize::Localizer localizer_;
   localize::PoseHistory external_;
+  PlaceInput place_input_;  // after the members built before validation (config_.validate())
   std::deque<core::ImuSample> imu_;
   std::unique_ptr<Pending> pending_;
   std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;  // last_cloud_stamp_: any frame

@@ -1,7 +1,8 @@
 #pragma once
 /// @file nav_stack_config.hpp The settings of navigate::NavStack: the navigator (mission state
-/// machine, headland turns), the end-of-row detector and the stack's own input handling, in one
-/// YAML file (config/navigate/<crop>.yaml: `navigator:`, `end_of_row:` and `stack:` sections).
+/// machine, headland turns), the end-of-row detector, the stack's own input handling and the
+/// map stage, in one YAML file (config/navigate/<crop>.yaml: `navigator:`, `end_of_row:`,
+/// `stack:` and `place:` sections).
 /// The robot's geometry, limits and odometry model come from the robot file (not from YAML
 /// here): the adapters fill `robot`, `limits` and `localizer`.
 ///
@@ -20,6 +21,7 @@
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/navigator.hpp"
 #include "rownav/navigate/obstacle_points.hpp"
+#include "rownav/navigate/place_input.hpp"
 
 namespace rownav::navigate {
 
@@ -148,6 +150,7 @@ struct NavStackConfig {
   NavigatorConfig navigator;  ///< mission state machine and headland turns
   EndOfRowConfig end_of_row;  ///< when the rows end ahead
   StackConfig stack;          ///< input handling
+  PlaceConfig place;          ///< the map stage: place, key locations (Emmi 2021; off by default)
   // From the robot file (io::nav_stack_robot), not from this YAML file:
   RobotLimits robot;                  ///< footprint and turn ability
   control::VelocityLimits limits;     ///< applied to every command, as a base controller would
@@ -158,11 +161,13 @@ struct NavStackConfig {
     v("navigator", s.navigator);
     v("end_of_row", s.end_of_row);
     v("stack", s.stack);
+    v("place", s.place);
   }
   void validate() const {
     core::validate_nested(navigator, "navigator");
     core::validate_nested(end_of_row, "end_of_row");
     core::validate_nested(stack, "stack");
+    core::validate_nested(place, "place");
     core::validate_nested(limits, "limits");
   }
 };
