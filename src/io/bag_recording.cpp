@@ -101,7 +101,8 @@ Recording read_mcap_recording(const std::filesystem::path& file, const BagTopics
     try {
       if (choice.take(c, kRos2PointCloud2, topics.cloud, choice.cloud)) {
         check_type(c, kRos2PointCloud2, file);
-        rec.cloud_stamps.push_back(decode_point_cloud2(m.data).stamp);
+        CdrReader header(m.data);  // the points are decoded when the replay asks for them
+        rec.cloud_stamps.push_back(read_header(header).stamp);
         refs.push_back(m.ref);
       } else if (choice.take(c, kRos2LaserScan, topics.scan, choice.scan)) {
         check_type(c, kRos2LaserScan, file);

@@ -30,7 +30,7 @@ enum Opcode : std::uint8_t {
   data_end = 0x0F,
 };
 
-/// CRC-32 (ISO-HDLC, as zlib's crc32) of `n` bytes, continuing from `crc` (0 to start): the
+/// CRC-32 (ISO-HDLC, zlib's crc32) of `n` bytes, continuing from `crc` (0 to start): the
 /// checksum of a chunk's uncompressed records.
 std::uint32_t crc32(const std::uint8_t* data, std::size_t n, std::uint32_t crc = 0);
 
