@@ -13,7 +13,17 @@ namespace {
 /// zstd's default level: rosbag2's and the MCAP CLI's "fast" default trade-off.
 constexpr int kZstdLevel = 3;
 
+/// LZ4's largest expansion: a 255-byte run per input byte (lz4 block format).
+constexpr std::uint64_t kLz4MaxRatio = 255;
+
 std::vector<std::uint8_t> zstd_decompress(std::span<const std::uint8_t> data, std::uint64_t size) {
+  // The frame header's content size, when it has one, must be the chunk's (checked before
+  // allocating what a corrupt size field announces).
+  const unsigned long long declared = ZSTD_getFrameContentSize(data.data(), data.size());
+  if (declared == ZSTD_CONTENTSIZE_ERROR) throw CompressionError("zstd: not a zstd frame");
+  if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != size)
+    throw CompressionError("zstd: the frame holds " + std::to_string(declared) +
+                           " bytes, the chunk announces " + std::to_string(size));
   std::vector<std::uint8_t> out(size);
   const std::size_t n = ZSTD_decompress(out.data(), out.size(), data.data(), data.size());
   if (ZSTD_isError(n))
@@ -30,6 +40,9 @@ std::vector<std::uint8_t> lz4_decompress(std::span<const std::uint8_t> data, std
     throw CompressionError("lz4: cannot create a decompression context");
   const std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(
       raw, LZ4F_freeDecompressionContext);
+  if (size > kLz4MaxRatio * data.size())
+    throw CompressionError("lz4: " + std::to_string(data.size()) + " bytes cannot hold " +
+                           std::to_string(size));
   std::vector<std::uint8_t> out(size);
   std::size_t in_pos = 0, out_pos = 0, hint = 1;
   while (hint != 0 && in_pos < data.size()) {

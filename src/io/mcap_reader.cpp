@@ -11,9 +11,10 @@ namespace rownav::io {
 
 namespace {
 
-/// [bytes] largest chunk decompressed (rosbag2 writes 768 KiB - 4 MiB chunks; a corrupt size
-/// field must not allocate the machine's memory).
-constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 32;
+/// [bytes] largest chunk decompressed: rosbag2 and the MCAP writers close a chunk at a few MiB
+/// (one message larger than that gets a chunk of its own); a corrupt size field must not
+/// allocate the machine's memory (the fuzz targets run in 512 MB).
+constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{256} << 20;
 
 /// Little-endian fields of one record's content; InputError at the record's offset.
 class Fields {

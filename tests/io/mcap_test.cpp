@@ -165,6 +165,19 @@ TEST(Mcap, MalformedFilesAreOneLineInputErrors) {
   expect_error(f, orphan, "unknown schema 8");
 }
 
+TEST(Mcap, AChunkAnnouncingMoreThanItCanHoldIsRefusedBeforeAllocating) {
+  test::TempDir dir("mcap");
+  write_sample(dir / "good.mcap", "lz4");
+  const std::string good = slurp(dir / "good.mcap");
+  const std::size_t size_at = good.find("lz4") - 4 - 4 - 8;  // uncompressed_size, crc, length
+  for (const auto& [size, reason] : {std::pair<std::uint64_t, std::string>{std::uint64_t{1} << 40, "limit"},
+                                     {std::uint64_t{100} << 20, "cannot hold"}}) {
+    std::string bad = good;
+    for (std::size_t i = 0; i < 8; ++i) bad[size_at + i] = char(size >> (8 * i));
+    expect_error(dir / "bad.mcap", bad, reason);
+  }
+}
+
 TEST(Mcap, AFileCutAfterItsDataEndStillReadsEveryMessage) {
   test::TempDir dir("mcap");
   write_sample(dir / "good.mcap", "lz4");
