@@ -132,7 +132,7 @@ void run_points_csv(const fs::path& in, detect::DetectionPipeline& p, const Emit
 
 void run_recording(const DetectArgs& a, const Emit& emit) {
   const bool bag = io::is_bag_file(a.in);
-  const io::Recording rec = bag ? io::read_mcap_recording(a.in, io::parse_bag_topics(a.topics))
+  const io::Recording rec = bag ? io::read_bag_recording(a.in, io::parse_bag_topics(a.topics))
                                 : io::read_recording(a.in);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   if (!a.mount.empty()) {

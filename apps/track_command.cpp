@@ -149,7 +149,7 @@ void run(const TrackArgs& a) {
   const bool bag = io::is_bag_file(a.in);
   if (!bag && !fs::is_directory(a.in))
     throw io::InputError(a.in.string(), "", "expected a recording directory or an .mcap bag");
-  const io::Recording rec = bag ? io::read_mcap_recording(a.in, io::parse_bag_topics(a.topics))
+  const io::Recording rec = bag ? io::read_bag_recording(a.in, io::parse_bag_topics(a.topics))
                                 : io::read_recording(a.in);
   if (rec.cloud_count() == 0 && rec.scans.empty())
     throw io::InputError(a.in.string(), "", "recording has no LiDAR frames");

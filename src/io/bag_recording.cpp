@@ -2,7 +2,9 @@
 #include "rownav/io/bag_recording.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -83,10 +85,40 @@ BagTopics parse_bag_topics(const std::string& spec) {
   return t;
 }
 
-bool is_bag_file(const std::filesystem::path& file) {
+namespace {
+
+std::string lower_extension(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".mcap";
+  return ext;
+}
+
+std::map<std::string, BagReader>& bag_readers() {
+  static std::map<std::string, BagReader> readers;
+  return readers;
+}
+
+}  // namespace
+
+bool is_bag_file(const std::filesystem::path& file) {
+  const std::string ext = lower_extension(file);
+  return ext == ".mcap" || ext == ".bag" || bag_readers().count(ext) > 0;
+}
+
+void register_bag_reader(const std::string& extension, BagReader reader) {
+  if (reader) bag_readers()[extension] = std::move(reader);
+  else bag_readers().erase(extension);
+}
+
+Recording read_bag_recording(const std::filesystem::path& file, const BagTopics& topics) {
+  const std::string ext = lower_extension(file);
+  if (ext == ".mcap") return read_mcap_recording(file, topics);
+  const auto it = bag_readers().find(ext);
+  if (it == bag_readers().end())
+    throw InputError(file.string(), "",
+                     "ROS 1 bags need librosbag: rownav was built without ROS (docs/bags.md); "
+                     "convert the bag to MCAP or rebuild with -DROWNAV_BUILD_ROS=ON");
+  return it->second(file, topics);
 }
 
 Recording read_mcap_recording(const std::filesystem::path& file, const BagTopics& topics) {

@@ -31,7 +31,24 @@ TEST(BagTopics, ParsesStreamsAndRefusesUnknownOnes) {
   EXPECT_THROW(parse_bag_topics("gps=/fix"), std::invalid_argument);
   EXPECT_THROW(parse_bag_topics("cloud"), std::invalid_argument);
   EXPECT_TRUE(is_bag_file("a/b.MCAP"));
-  EXPECT_FALSE(is_bag_file("a/b.bag"));
+  EXPECT_TRUE(is_bag_file("a/b.bag"));
+  EXPECT_FALSE(is_bag_file("a/b.pcd"));
+}
+
+TEST(BagTopics, ARosOneBagWithoutItsReaderIsAnInputError) {
+  try {
+    read_bag_recording("run.bag");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("built without ROS"), std::string::npos) << e.what();
+  }
+  register_bag_reader(".bag", [](const fs::path&, const BagTopics& t) {
+    Recording r;
+    r.dir = t.cloud;
+    return r;
+  });
+  EXPECT_EQ(read_bag_recording("run.bag", parse_bag_topics("cloud=/c")).dir, "/c");
+  register_bag_reader(".bag", nullptr);
 }
 
 /// A short scripted drive through a small vineyard, recorded as `rownav sim` records it

@@ -10,6 +10,7 @@
 /// Writing: clouds on /points, scans on /scan, IMU on /imu and the ground-truth poses on /odom
 /// (a simulator's perfect odometry), messages in stamp order.
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "rownav/io/mcap_writer.hpp"
@@ -27,8 +28,19 @@ struct BagTopics {
 /// the bad item.
 BagTopics parse_bag_topics(const std::string& spec);
 
-/// True for a file the bag readers take (".mcap").
+/// True for a file the bag readers take (".mcap", ".bag"; case-insensitive).
 bool is_bag_file(const std::filesystem::path& file);
+
+/// A reader of another bag format (ROS 1 `.bag`: ros/, built only with ROS).
+using BagReader =
+    std::function<Recording(const std::filesystem::path& file, const BagTopics& topics)>;
+/// Registers `reader` for files ending in `extension` (".bag"; a null reader unregisters).
+/// Not thread-safe: call at start-up.
+void register_bag_reader(const std::string& extension, BagReader reader);
+
+/// Reads a bag by its extension: ".mcap" read_mcap_recording, others through a registered
+/// reader; InputError when none is registered (".bag" without ROS at build time).
+Recording read_bag_recording(const std::filesystem::path& file, const BagTopics& topics = {});
 
 /// Reads an MCAP file. InputError on a malformed file or message (naming the topic and the
 /// message index), or a topic of BagTopics that is not in the bag / not of the right type.
