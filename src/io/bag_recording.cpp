@@ -121,6 +121,33 @@ Recording read_bag_recording(const std::filesystem::path& file, const BagTopics&
   return it->second(file, topics);
 }
 
+namespace {
+
+/// Clouds in stamp order; each decoded again from the bag when replayed (not kept in memory).
+void set_cloud_source(Recording& rec, const std::vector<McapRef>& refs,
+                      const std::shared_ptr<McapReader>& reader, const std::filesystem::path& file) {
+  std::vector<std::size_t> order(refs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return rec.cloud_stamps[a] < rec.cloud_stamps[b];
+  });
+  std::vector<McapRef> sorted_refs;
+  std::vector<double> sorted_stamps;
+  for (const std::size_t i : order)
+    sorted_refs.push_back(refs[i]), sorted_stamps.push_back(rec.cloud_stamps[i]);
+  rec.cloud_stamps = std::move(sorted_stamps);
+  rec.cloud_files.assign(rec.cloud_stamps.size(), "");
+  rec.cloud_source = [reader, sorted_refs, file](std::size_t i) {
+    try {
+      return decode_point_cloud2(reader->message_data(sorted_refs.at(i)));
+    } catch (const CdrError& e) {
+      throw InputError(file.string(), "cloud " + std::to_string(i), e.what());
+    }
+  };
+}
+
+}  // namespace
+
 Recording read_mcap_recording(const std::filesystem::path& file, const BagTopics& topics) {
   auto reader = std::make_shared<McapReader>(file);
   Recording rec;
@@ -157,25 +184,7 @@ Recording read_mcap_recording(const std::filesystem::path& file, const BagTopics
   check_named(topics.imu, choice.imu, "imu", file);
   check_named(topics.odom, choice.odom, "odom", file);
   sort_by_stamp(rec.scans), sort_by_stamp(rec.imu), sort_by_stamp(rec.odometry);
-  // Clouds in stamp order; each decoded again from the bag when replayed (not kept in memory).
-  std::vector<std::size_t> order(refs.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return rec.cloud_stamps[a] < rec.cloud_stamps[b];
-  });
-  std::vector<McapRef> sorted_refs;
-  std::vector<double> sorted_stamps;
-  for (const std::size_t i : order)
-    sorted_refs.push_back(refs[i]), sorted_stamps.push_back(rec.cloud_stamps[i]);
-  rec.cloud_stamps = std::move(sorted_stamps);
-  rec.cloud_files.assign(rec.cloud_stamps.size(), "");
-  rec.cloud_source = [reader, sorted_refs, file](std::size_t i) {
-    try {
-      return decode_point_cloud2(reader->message_data(sorted_refs.at(i)));
-    } catch (const CdrError& e) {
-      throw InputError(file.string(), "cloud " + std::to_string(i), e.what());
-    }
-  };
+  set_cloud_source(rec, refs, reader, file);
   const auto meta = reader->metadata().find(kMetadataName);
   if (meta != reader->metadata().end() && meta->second.count(kManifestKey)) {
     try {
