@@ -14,8 +14,10 @@
 #include "rownav/io/safe_output.hpp"
 #include "rownav/navigate/nav_stack.hpp"
 #include "detect_picture.hpp"
+#include "setup.hpp"
 #include "rownav/core/angle.hpp"
 #include "rownav/detect/pipeline.hpp"
+#include "rownav/io/bag_recording.hpp"
 #include "rownav/io/cloud_io.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/io/input_error.hpp"
@@ -33,19 +35,10 @@ struct DetectArgs {
   std::string detector;
   fs::path config, in, out, svg;
   std::vector<double> mount;  // x, y, z [m], roll, pitch, yaw [deg]
+  std::string topics;         // bags: stream=/topic,...
   int svg_frame = 0;
   bool overwrite = false;
 };
-
-Eigen::Isometry3d mount_transform(const std::vector<double>& m) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(core::deg2rad(m[5]), Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(core::deg2rad(m[4]), Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(core::deg2rad(m[3]), Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(m[0], m[1], m[2]);
-  return T;
-}
 
 json row_json(const core::RowLine& r) {
   return {{"offset", r.offset},   {"heading_deg", core::rad2deg(r.heading)},
@@ -138,12 +131,16 @@ void run_points_csv(const fs::path& in, detect::DetectionPipeline& p, const Emit
 }
 
 void run_recording(const DetectArgs& a, const Emit& emit) {
-  const io::Recording rec = io::read_recording(a.in);
+  const bool bag = io::is_bag_file(a.in);
+  const io::Recording rec = bag ? io::read_bag_recording(a.in, io::parse_bag_topics(a.topics))
+                                : io::read_recording(a.in);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   if (!a.mount.empty()) {
     T = mount_transform(a.mount);
+  } else if (bag && !rec.manifest["sensors"]) {
+    // A bag without rownav's manifest: the LiDAR frame is the base frame (as for a .pcd).
   } else {
-    const std::string manifest = (a.in / "manifest.yaml").string();
+    const std::string manifest = bag ? a.in.string() : (a.in / "manifest.yaml").string();
     if (!rec.manifest["sensors"] || !rec.manifest["sensors"]["lidar"])
       throw io::InputError(manifest, "", "no sensors.lidar (the LiDAR mount): give --lidar-mount");
     T = io::decode_sim_config(rec.manifest["sensors"], manifest).lidar.T_base_lidar();
@@ -154,6 +151,9 @@ void run_recording(const DetectArgs& a, const Emit& emit) {
   // as on the robot (a cross slope otherwise biases the corridor centre towards uphill).
   navigate::NavStackConfig config;
   config.stack.mode = navigate::StackMode::detect;
+  // A bag's motion (deskewing each sweep) comes from its nav_msgs/Odometry, not encoders.
+  if (rec.encoders.empty() && !rec.odometry.empty())
+    config.stack.odometry = navigate::OdometryInput::external;
   navigate::NavStackParts parts;
   parts.pipeline =
       std::make_unique<detect::DetectionPipeline>(io::make_pipeline(a.detector, a.config, T));
@@ -186,7 +186,7 @@ void run(const DetectArgs& a) {
     }
   };
   const std::string ext = a.in.extension().string();
-  if (fs::is_directory(a.in)) {
+  if (fs::is_directory(a.in) || io::is_bag_file(a.in)) {
     run_recording(a, emit);  // its own pipeline: the mount comes from the manifest
   } else {
     const Eigen::Isometry3d T =
@@ -201,7 +201,7 @@ void run(const DetectArgs& a) {
     else
       throw io::InputError(
           a.in.string(), "",
-          "unknown input type (expected .pcd, .ply, .csv or a recording directory)");
+          "unknown input type (expected .pcd, .ply, .csv, .mcap or a recording directory)");
   }
   out.close();
   if (!out) throw std::runtime_error(a.out.string() + ": cannot write");
@@ -244,8 +244,8 @@ void add_detect_command(CLI::App& app) {
                 "input: .pcd / .ply cloud; .csv of x,y[,z] points (a `frame` column: one output "
                 "line per frame; x,y only: a planar sensor); .csv of scans (header " +
                     std::string(io::kScansCsvHeader) +
-                    "); or a recording directory (mount from "
-                    "its manifest's sensors.lidar)")
+                    "); a recording directory (mount from its manifest's sensors.lidar); or a "
+                    "ROS 2 bag .mcap (docs/bags.md)")
       ->required()
       ->check(CLI::ExistingPath);
   c->add_option("--out", a->out, "JSON-lines output file")->required();
@@ -253,6 +253,9 @@ void add_detect_command(CLI::App& app) {
   c->add_option("--svg", a->svg,
                  "picture (.svg, .png or .pdf) of one frame: points and detected rows");
   c->add_option("--svg-frame", a->svg_frame, "0-based frame drawn by --svg (default 0)");
+  c->add_option("--topics", a->topics,
+                "bags: the topics read, e.g. cloud=/points,imu=/imu,odom=/odom,scan=/scan "
+                "(default: the first topic of each message type)");
   c->add_option("--lidar-mount", a->mount,
                 "T_base_lidar as x,y,z,roll_deg,pitch_deg,yaw_deg (metres, degrees; rotation "
                 "Rz(yaw) Ry(pitch) Rx(roll)); default: identity, or the recording's mount")

@@ -6,6 +6,9 @@
 
 #include "commands.hpp"
 #include "rownav/core/version.hpp"
+#ifdef ROWNAV_WITH_ROSBAG
+#include "rownav_ros/rosbag_reader.hpp"  // ROS 1 .bag files (built with ROS: ros/CMakeLists.txt)
+#endif
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -14,6 +17,9 @@ int main(int argc, char** argv) {
       "command line and in configs."};
   app.set_version_flag("--version", rownav::core::version());
   app.require_subcommand(1);
+#ifdef ROWNAV_WITH_ROSBAG
+  rownav::ros_bridge::register_rosbag_reader();
+#endif
   rownav::app::add_sim_command(app);
   rownav::app::add_render_command(app);
   rownav::app::add_demo_command(app);

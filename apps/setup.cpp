@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "rownav/core/angle.hpp"
 #include "rownav/io/field_builder.hpp"
 #include "rownav/io/sim_setup.hpp"
 #include "rownav/io/yaml_config.hpp"
@@ -57,6 +58,16 @@ core::Pose2 path_start(const std::vector<sim::PathPoint>& path) {
   if (path.size() < 2) return {};
   const Eigen::Vector2d d = path[1].p - path[0].p;
   return {path[0].p.x(), path[0].p.y(), std::atan2(d.y(), d.x())};
+}
+
+Eigen::Isometry3d mount_transform(const std::vector<double>& m) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(core::deg2rad(m[5]), Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(core::deg2rad(m[4]), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(core::deg2rad(m[3]), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(m[0], m[1], m[2]);
+  return T;
 }
 
 }  // namespace rownav::app

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/field_config.hpp"
@@ -28,6 +29,9 @@ sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file);
 sim::SimConfig load_sensors(const std::optional<std::filesystem::path>& file,
                             const std::string& lidar_preset_override);
 sim::PathConfig load_path(const std::optional<std::filesystem::path>& file);
+
+/// T_base_lidar from --lidar-mount x,y,z,roll_deg,pitch_deg,yaw_deg (Rz(yaw) Ry(pitch) Rx(roll)).
+Eigen::Isometry3d mount_transform(const std::vector<double>& m);
 
 /// Starting pose: on the path's first point, facing its second.
 core::Pose2 path_start(const std::vector<sim::PathPoint>& path);

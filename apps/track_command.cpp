@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "setup.hpp"
+#include "rownav/io/bag_recording.hpp"
 #include "rownav/io/canvas.hpp"
 #include "rownav/io/recording_replay.hpp"
 #include "rownav/io/safe_output.hpp"
@@ -39,6 +41,8 @@ struct TrackArgs {
   std::string detector, tracker;
   fs::path in, out, svg, detect_config, track_config, localize_config;
   std::string odometry = "localizer";
+  std::string topics;         // bags: stream=/topic,...
+  std::vector<double> mount;  // --lidar-mount, bags without a rownav manifest
   bool overwrite = false;
 };
 
@@ -123,38 +127,52 @@ localize::LocalizerConfig localizer_config(const TrackArgs& a, const io::Recordi
   return {};
 }
 
-Eigen::Isometry3d recording_mount(const io::Recording& rec, const fs::path& dir) {
-  const std::string manifest = (dir / "manifest.yaml").string();
+Eigen::Isometry3d recording_mount(const io::Recording& rec, const TrackArgs& a) {
+  if (!a.mount.empty()) return mount_transform(a.mount);
+  const bool bag = io::is_bag_file(a.in);
+  const std::string manifest = bag ? a.in.string() : (a.in / "manifest.yaml").string();
   if (!rec.manifest["sensors"] || !rec.manifest["sensors"]["lidar"])
-    throw io::InputError(manifest, "", "no sensors.lidar (the LiDAR mount)");
+    throw io::InputError(manifest, "", bag ? "no rownav manifest (the LiDAR mount): give --lidar-mount"
+                                           : "no sensors.lidar (the LiDAR mount)");
   return io::decode_sim_config(rec.manifest["sensors"], manifest).lidar.T_base_lidar();
 }
 
+/// A bag's odometry is its nav_msgs/Odometry, fed to the stack as an external odometry.
+void check_bag(const TrackArgs& a, const io::Recording& rec) {
+  if (a.odometry == "truth")
+    throw io::InputError(a.in.string(), "", "--odometry truth: a bag has no ground truth");
+  if (rec.odometry.empty())
+    throw io::InputError(a.in.string(), "", "bag has no nav_msgs/msg/Odometry messages");
+}
+
 void run(const TrackArgs& a) {
-  if (!fs::is_directory(a.in))
-    throw io::InputError(a.in.string(), "", "expected a recording directory");
-  const io::Recording rec = io::read_recording(a.in);
+  const bool bag = io::is_bag_file(a.in);
+  if (!bag && !fs::is_directory(a.in))
+    throw io::InputError(a.in.string(), "", "expected a recording directory or an .mcap bag");
+  const io::Recording rec = bag ? io::read_bag_recording(a.in, io::parse_bag_topics(a.topics))
+                                : io::read_recording(a.in);
   if (rec.cloud_count() == 0 && rec.scans.empty())
     throw io::InputError(a.in.string(), "", "recording has no LiDAR frames");
+  if (bag) check_bag(a, rec);
   const bool truth = a.odometry == "truth";
   if (truth && rec.ground_truth.empty())
     throw io::InputError(a.in.string(), "", "--odometry truth: recording has no ground_truth.csv");
-  if (!truth && rec.encoders.empty())
+  if (!bag && !truth && rec.encoders.empty())
     throw io::InputError(a.in.string(), "", "recording has no encoders.csv (try --odometry truth)");
   // The one stack, run as far as the tracker, fed the recording as a robot would be.
   navigate::NavStackConfig config;
   config.stack.mode = navigate::StackMode::track;
-  std::string source = "recorded ground truth";
-  if (truth)
+  std::string source = bag ? "nav_msgs/Odometry of the bag" : "recorded ground truth";
+  if (truth || bag)
     config.stack.odometry = navigate::OdometryInput::external;
   else
     config.localizer = localizer_config(a, rec, source);
   navigate::NavStackParts parts;
   parts.tracker = io::make_tracker(a.tracker, a.track_config);
   parts.pipeline = std::make_unique<detect::DetectionPipeline>(
-      io::make_pipeline(a.detector, a.detect_config, recording_mount(rec, a.in)));
+      io::make_pipeline(a.detector, a.detect_config, recording_mount(rec, a)));
   navigate::NavStack stack(config, std::move(parts));
-  std::cout << "odometry: " << (truth ? source : "Localizer, " + source) << "\n";
+  std::cout << "odometry: " << (truth || bag ? source : "Localizer, " + source) << "\n";
   // Both outputs are claimed first: a refused name is said before the work (io/safe_output.hpp).
   if (!a.svg.empty()) io::picture_format(a.svg);  // names the user's file, not the staging one
   io::OutputFile partial(a.out, a.overwrite);
@@ -215,9 +233,19 @@ void add_track_command(CLI::App& app) {
   std::string detectors, trackers;
   for (const auto& n : io::detector_names()) detectors += (detectors.empty() ? "" : ", ") + n;
   for (const auto& n : io::tracker_names()) trackers += (trackers.empty() ? "" : ", ") + n;
-  c->add_option("--in", a->in, "recording directory (rownav sim --out)")
+  c->add_option("--in", a->in,
+                "recording directory (rownav sim --out) or ROS 2 bag .mcap (docs/bags.md: its "
+                "nav_msgs/Odometry is the odometry)")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);
+  c->add_option("--topics", a->topics,
+                "bags: the topics read, e.g. cloud=/points,imu=/imu,odom=/odom,scan=/scan "
+                "(default: the first topic of each message type)");
+  c->add_option("--lidar-mount", a->mount,
+                "T_base_lidar as x,y,z,roll_deg,pitch_deg,yaw_deg (default: the recording's "
+                "manifest; required for a bag not written by rownav)")
+      ->expected(6)
+      ->delimiter(',');
   c->add_option("--detector", a->detector, "row detector: " + detectors)->required();
   c->add_option("--tracker", a->tracker, "row tracker: " + trackers)->required();
   c->add_option("--out", a->out, "CSV output file")->required();

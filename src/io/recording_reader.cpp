@@ -184,6 +184,7 @@ void read_lidar(const fs::path& dir, Recording& rec) {
 }  // namespace
 
 core::PointCloud Recording::cloud(std::size_t i) const {
+  if (cloud_source) return cloud_source(i);
   core::PointCloud c = read_cloud(dir / "lidar" / cloud_files.at(i));
   c.stamp = cloud_stamps.at(i);
   return c;

@@ -20,8 +20,14 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 /// The recorded streams, each consumed in stamp order up to a time.
 class Streams {
  public:
+  /// `truth`: the ground-truth poses as the external odometry instead of the encoders and
+  /// GNSS; else the recording's own external odometry (a bag's), if it has one.
   Streams(const Recording& rec, navigate::NavStack& stack, bool truth)
-      : rec_(rec), stack_(stack), truth_(truth) {}
+      : rec_(rec), stack_(stack), truth_(truth) {
+    if (!truth) return;
+    truth_poses_.reserve(rec.ground_truth.size());
+    for (const auto& g : rec.ground_truth) truth_poses_.push_back({g.stamp, g.T_world_base, g.twist});
+  }
 
   /// Feeds every sample stamped at or before t.
   void feed_until(double t) {
@@ -29,8 +35,7 @@ class Streams {
       const double te = truth_ || ie_ >= rec_.encoders.size() ? kNever : rec_.encoders[ie_].stamp;
       const double ti = ii_ < rec_.imu.size() ? rec_.imu[ii_].stamp : kNever;
       const double tg = truth_ || ig_ >= rec_.gnss.size() ? kNever : rec_.gnss[ig_].stamp;
-      const double tt =
-          !truth_ || it_ >= rec_.ground_truth.size() ? kNever : rec_.ground_truth[it_].stamp;
+      const double tt = it_ < poses().size() ? poses()[it_].stamp : kNever;
       const double next = std::min({te, ti, tg, tt});
       if (!(next <= t)) return;
       if (te == next)
@@ -40,18 +45,19 @@ class Streams {
       else if (tg == next)
         stack_.on_gnss(rec_.gnss[ig_++]);
       else
-        on_truth(rec_.ground_truth[it_++]);
+        stack_.on_odometry(poses()[it_++]);
     }
   }
 
  private:
-  void on_truth(const sim::GroundTruth& g) {
-    stack_.on_odometry({g.stamp, g.T_world_base, g.twist});
+  const std::vector<localize::StampedPose>& poses() const {
+    return truth_ ? truth_poses_ : rec_.odometry;
   }
 
   const Recording& rec_;
   navigate::NavStack& stack_;
   bool truth_;
+  std::vector<localize::StampedPose> truth_poses_;
   std::size_t ie_ = 0, ii_ = 0, ig_ = 0, it_ = 0;
 };
 

@@ -20,6 +20,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "rownav/core/scan2d.hpp"
 #include "rownav/core/sensor_samples.hpp"
 #include "rownav/io/safe_output.hpp"
+#include "rownav/localize/pose_history.hpp"
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/ground_truth.hpp"
 
@@ -90,6 +92,12 @@ struct Recording {
   std::vector<sim::GroundTruth> ground_truth;
   std::vector<sim::Row> rows;      ///< field rows (field/rows.csv)
   std::vector<sim::Plant> plants;  ///< field plants (field/plants.csv)
+  /// An external odometry (a bag's nav_msgs/Odometry, io/bag_recording.hpp); a recording
+  /// directory has none (its odometry is its encoders + IMU, or the ground truth).
+  std::vector<localize::StampedPose> odometry;
+  /// Loads cloud i when set (a bag's clouds, read from the bag on demand); else cloud(i) reads
+  /// lidar/<cloud_files[i]>.
+  std::function<core::PointCloud(std::size_t)> cloud_source;
 
   std::size_t cloud_count() const { return cloud_stamps.size(); }
   /// Reads cloud i (InputError on a bad file); its stamp is the one in frames.csv.
