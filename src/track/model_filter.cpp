@@ -114,7 +114,7 @@ bool ModelFilterTracker::in_box(const core::RowLine& r, int s, double init_max) 
   // the row's support.
   const SlopeIntercept& m = model_[s];
   for (const double x : {r.x_min, r.x_max, 0.0})
-    if (std::abs(r.line.y_at(x) - (m.a * x + m.b)) > box_half_width()) return false;
+    if (std::abs(r.line.y_at(x) - (m.a * x + m.b)) > config_.box_half_width) return false;
   return true;
 }
 

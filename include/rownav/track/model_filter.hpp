@@ -20,9 +20,10 @@ namespace rownav::track {
 /// Parameters of ModelFilterTracker. Paper values where it gives them, rownav otherwise.
 struct ModelFilterConfig {
   double box_half_width = 0.4;  ///< [m] half width of the data-filter box around a model (rownav)
-  /// [-] once the row spacing is measured the box half width is this fraction of it (0.4 m at
-  /// a 2 m vineyard spacing; a 0.8 m vegetable bed gets ~0.13 m, so the lane's weeds stay out of
-  /// the box, issue 11); 0 keeps box_half_width
+  /// [-] the point filter's box (filter_points): once the row spacing is measured its half
+  /// width is this fraction of it (0.4 m at a 2 m vineyard spacing; a 1 m vegetable bed gets
+  /// ~0.16 m, so the lane's weeds stay out, issue 11); 0 keeps box_half_width. The gate of the
+  /// detected rows keeps box_half_width (scaled, it cost maize 2 of 3 closed-loop runs)
   double box_spacing_ratio = 0.2;
   /// Malavazi 2018 sec. 2.3.1 as published: the boxes select the next scan's points before the
   /// detector (a planar scan's points; 3D detectors see their cloud unfiltered). false: only
