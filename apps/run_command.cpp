@@ -155,6 +155,12 @@ bool run_mission(const RunArgs& a) {
   }
   out.commit();
   print_summary(summary, a);
+  // A safe stop says why in one line (the event's text: what the navigator saw).
+  for (auto e = r.events.rbegin(); e != r.events.rend(); ++e)
+    if (e->kind == navigate::NavEventKind::safe_stop) {
+      std::cout << "stopped: " << e->text << "\n";
+      break;
+    }
   if (faults) std::cout << io::describe(*faults);
   return summary.success;
 }

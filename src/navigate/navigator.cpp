@@ -181,7 +181,11 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   if (seen) last_seen_ = in.stamp;
   if (in.stamp - last_seen_ > config_.perception_timeout)
     return stop(StopReason::perception_lost, out, in.stamp,
-                "no rows for " + fmt(in.stamp - last_seen_) + " s");
+                "no rows for " + fmt(in.stamp - last_seen_) + " s" +
+                    (in.points_base.empty()
+                         ? " and no points in the detection window (sensor above the crop, "
+                           "or pointed away from it?)"
+                         : ""));
   if (obstacle_ahead(in))
     return stop(StopReason::obstacle, out, in.stamp,
                 "obstacle within " + fmt(config_.stop_distance) + " m");

@@ -111,3 +111,29 @@ TEST(Navigator, ArmReachIsValidated) {
 
 }  // namespace
 }  // namespace rownav::navigate
+
+namespace rownav::navigate {
+namespace {
+
+TEST(Navigator, PerceptionLostWithAnEmptyWindowSaysSo) {
+  // A 2D scanner mounted above 0.3 m cabbages returns nothing: the stop says why, not only
+  // "no rows" (issue 11: ruby + model_filter + fir_pid stopped at once, 3/3 seeds).
+  Navigator nav{NavigatorConfig{}, {0}, TurnSide::left};
+  nav.step(frame(0.0, true));
+  const NavOutput out = nav.step(frame(0.7, false));  // points_base empty
+  ASSERT_EQ(out.stop_reason, StopReason::perception_lost);
+  ASSERT_FALSE(out.events.empty());
+  EXPECT_NE(out.events.back().text.find("no points in the detection window"), std::string::npos)
+      << out.events.back().text;
+  Navigator seen{NavigatorConfig{}, {0}, TurnSide::left};
+  seen.step(frame(0.0, true));
+  std::vector<Eigen::Vector2f> pts = {{2.0f, 1.5f}};
+  NavInput in = frame(0.7, false);
+  in.points_base = pts;
+  const NavOutput out2 = seen.step(in);
+  ASSERT_FALSE(out2.events.empty());
+  EXPECT_EQ(out2.events.back().text.find("no points"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rownav::navigate
