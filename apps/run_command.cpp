@@ -155,6 +155,9 @@ bool run_mission(const RunArgs& a) {
   }
   out.commit();
   print_summary(summary, a);
+  for (const auto& e : r.events)  // what the robot could not avoid, said once per corridor
+    if (e.kind == navigate::NavEventKind::narrow_corridor)
+      std::cout << "warning: corridor " << e.corridor << ": " << e.text << "\n";
   // A safe stop says why in one line (the event's text: what the navigator saw).
   for (auto e = r.events.rbegin(); e != r.events.rend(); ++e)
     if (e->kind == navigate::NavEventKind::safe_stop) {

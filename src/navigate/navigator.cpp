@@ -24,7 +24,40 @@ bool reached_rows(const track::RowTracking& t, double reach) {
   return !any;
 }
 
+/// [m] free width between the followed rows' inner canopy edges; nullopt without both rows.
+std::optional<double> clear_width(const track::RowTracking& t) {
+  if (t.left < 0 || t.right < 0 || t.left >= static_cast<int>(t.rows.size()) ||
+      t.right >= static_cast<int>(t.rows.size()))
+    return std::nullopt;
+  const auto edge = [](const track::TrackedRow& r, double side) {
+    if (std::isfinite(r.centre_offset) && r.half_width > 0.0)
+      return r.centre_offset + side * r.half_width;
+    return r.offset;  // a fitted face (planar scan): already the edge
+  };
+  const double w = edge(t.rows[static_cast<std::size_t>(t.left)], -1.0) -
+                   edge(t.rows[static_cast<std::size_t>(t.right)], 1.0);
+  return std::isfinite(w) ? std::optional<double>(w) : std::nullopt;
+}
+
 }  // namespace
+
+void Navigator::check_lane(const NavInput& in, NavOutput& out) {
+  if (config_.narrow_frames == 0 || narrow_said_ ||
+      in.tracking.status != track::TrackStatus::tracking)
+    return;
+  const auto w = clear_width(in.tracking);
+  if (!w) return;
+  ++lane_frames_;
+  if (*w < in.robot.width + 2.0 * config_.narrow_margin) ++narrow_count_;
+  // Most of the corridor's frames so far, and at least narrow_frames of them (a gap or a
+  // wrong frame is not a narrow corridor).
+  if (narrow_count_ < config_.narrow_frames || 2 * narrow_count_ <= lane_frames_) return;
+  narrow_said_ = true;
+  out.events.push_back({in.stamp, NavEventKind::narrow_corridor, order_[leg_],
+                        in.T_odom_base.translation(),
+                        "lane " + fmt(*w) + " m clear between the rows' canopies, robot " +
+                            fmt(in.robot.width) + " m wide: it will brush or crush plants"});
+}
 
 std::string Navigator::fmt(double v) {  // event texts: centimetres are enough
   std::ostringstream s;
@@ -40,6 +73,8 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(exit_clearance, "exit_clearance");
   core::check_positive(perception_timeout, "perception_timeout");
   core::check_non_negative(arm_reach, "arm_reach");
+  core::check_non_negative(narrow_frames, "narrow_frames");
+  core::check_non_negative(narrow_margin, "narrow_margin");
   core::check_non_negative(stop_distance, "stop_distance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
   core::check_positive(entry_check_depth, "entry_check_depth");
@@ -190,6 +225,7 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
     return stop(StopReason::obstacle, out, in.stamp,
                 "obstacle within " + fmt(config_.stop_distance) + " m");
   ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
+  check_lane(in, out);
   control::ControlInput c;
   c.stamp = in.stamp;
   c.lateral_error = in.tracking.lateral_error;

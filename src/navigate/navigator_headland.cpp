@@ -90,6 +90,7 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
     ++leg_;
     state_ = NavState::in_row;
     at_rows_ = true;  // entered past entry_check_depth: between the rows
+    narrow_count_ = lane_frames_ = 0, narrow_said_ = false;
     // The end-of-row detector saw no rows ahead all through the headland and latches; the new
     // corridor starts with a fresh decision.
     out.reset_end_of_row = true;

@@ -137,3 +137,49 @@ TEST(Navigator, PerceptionLostWithAnEmptyWindowSaysSo) {
 
 }  // namespace
 }  // namespace rownav::navigate
+
+namespace rownav::navigate {
+namespace {
+
+// Tracked rows at +-spacing / 2 with canopy half width h (centre lines), robot 0.32 m wide.
+NavInput lane_frame(double t, double spacing, double h) {
+  NavInput in = frame(t, true);
+  for (const double y : {-0.5 * spacing, 0.5 * spacing}) {
+    track::TrackedRow r;
+    r.line_base = core::Line2(Eigen::Vector2d(0.0, y), Eigen::Vector2d(1.0, 0.0));
+    r.offset = r.centre_offset = y;
+    r.half_width = h;
+    r.x_min = -1.0, r.x_max = 4.0;
+    in.tracking.rows.push_back(r);
+  }
+  in.tracking.right = 0, in.tracking.left = 1;
+  in.robot.width = 0.32;
+  return in;
+}
+
+int narrow_events(Navigator& nav, double spacing, double h, int frames) {
+  int n = 0;
+  for (int k = 0; k < frames; ++k)
+    for (const auto& e : nav.step(lane_frame(0.1 * k, spacing, h)).events)
+      n += e.kind == NavEventKind::narrow_corridor ? 1 : 0;
+  return n;
+}
+
+TEST(Navigator, ALaneNarrowerThanTheRobotIsReportedOnce) {
+  NavigatorConfig on;
+  on.narrow_frames = 10;  // as config/navigate/row_crop.yaml
+  // 0.6 m cabbage rows with 0.225 m canopy half widths leave 0.15 m for a 0.32 m robot.
+  Navigator narrow{on, {0}, TurnSide::left};
+  EXPECT_EQ(narrow_events(narrow, 0.6, 0.225, 30), 1);
+  // 1.0 m beds leave 0.55 m (> 0.32 + 2 x 0.05): nothing to say; nor before narrow_frames.
+  Navigator wide{on, {0}, TurnSide::left};
+  EXPECT_EQ(narrow_events(wide, 1.0, 0.225, 30), 0);
+  Navigator brief{on, {0}, TurnSide::left};
+  EXPECT_EQ(narrow_events(brief, 0.6, 0.225, on.narrow_frames - 1), 0);
+  // Off by default (vine and tree canopies overhang the robot).
+  Navigator off{NavigatorConfig{}, {0}, TurnSide::left};
+  EXPECT_EQ(narrow_events(off, 0.6, 0.225, 30), 0);
+}
+
+}  // namespace
+}  // namespace rownav::navigate

@@ -66,7 +66,10 @@ enum class NavEventKind : std::uint8_t {
   safe_stop,
   mission_done,
   input_stale,   ///< the watchdog zeroes the command: LiDAR or odometry too old
-  input_resumed  ///< fresh inputs again: the command is released
+  input_resumed,  ///< fresh inputs again: the command is released
+  /// the lane between the followed rows' canopies is narrower than the robot: it will brush
+  /// or crush plants however well it steers (once per corridor; issue 11)
+  narrow_corridor
 };
 
 /// One event.
@@ -101,6 +104,17 @@ struct NavigatorConfig {
   /// is at the rows). Before that, the empty ground between the robot and the row start reads as
   /// a row end (issue 11: a 4 m 2D scanner and a short bed exited before the bed, 3/3 runs)
   double arm_reach = 1.0;
+  /// [frames] tracked frames in a row whose lane between the followed rows' canopies (centre
+  /// lines and half widths; a planar scan's fitted faces) is narrower than the robot before the
+  /// narrow_corridor event (rownav; issue 11: 0.6 m cabbage rows leave 0.35 m for a 0.32 m robot).
+  /// 0 = off, the default: vine and tree canopies overhang the robot (the 1.8 m vineyard's
+  /// crowns leave 0.49 m for a 0.6 m robot that crushes nothing); config/navigate/row_crop.yaml
+  /// and market_garden.yaml turn it on (plants from the ground up)
+  int narrow_frames = 0;
+  /// [m] per side: the lane counts as narrow below the robot's width plus twice this (what a
+  /// row follower's lateral error and the plants' size spread take; rownav: mean displacement
+  /// 0.01-0.03 m in BENCHMARK.md, heads 15 % larger than their mean)
+  double narrow_margin = 0.05;
   double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
   int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
   double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
@@ -121,6 +135,8 @@ struct NavigatorConfig {
     v("exit_clearance", s.exit_clearance);
     v("perception_timeout", s.perception_timeout);
     v("arm_reach", s.arm_reach);
+    v("narrow_frames", s.narrow_frames);
+    v("narrow_margin", s.narrow_margin);
     v("stop_distance", s.stop_distance);
     v("obstacle_min_points", s.obstacle_min_points);
     v("entry_check_depth", s.entry_check_depth);
@@ -225,6 +241,10 @@ class Navigator {
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
   bool at_rows_ = false;  // the end of row is armed (the robot has reached the rows)
+  int narrow_count_ = 0;       // this corridor's frames with a lane narrower than the robot
+  int lane_frames_ = 0;        // this corridor's frames with both rows followed
+  bool narrow_said_ = false;   // narrow_corridor reported for this corridor
+  void check_lane(const NavInput& in, NavOutput& out);
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
   int served_ = 0, turns_ = 0;
   double last_seen_ = -1.0, last_stamp_ = 0.0;
@@ -269,7 +289,7 @@ struct rownav::core::EnumNames<rownav::navigate::StopReason> {
 template <>
 struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
   using E = rownav::navigate::NavEventKind;
-  static constexpr std::array<std::pair<E, std::string_view>, 11> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 12> values{
       {{E::row_end, "row_end"},
        {E::exit_done, "exit_done"},
        {E::turn_started, "turn_started"},
@@ -280,5 +300,6 @@ struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
        {E::safe_stop, "safe_stop"},
        {E::mission_done, "mission_done"},
        {E::input_stale, "input_stale"},
-       {E::input_resumed, "input_resumed"}}};
+       {E::input_resumed, "input_resumed"},
+       {E::narrow_corridor, "narrow_corridor"}}};
 };
