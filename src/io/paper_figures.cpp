@@ -48,9 +48,7 @@ std::optional<MalavaziFigures> malavazi_2018_figures(int level, std::string_view
 std::optional<int> weed_level_of(std::string_view field_name) {
   constexpr std::array<std::string_view, 3> suffix = {"_weeds_none", "_weeds_some", "_weeds_many"};
   for (std::size_t i = 0; i < suffix.size(); ++i)
-    if (field_name.size() >= suffix[i].size() &&
-        field_name.substr(field_name.size() - suffix[i].size()) == suffix[i])
-      return static_cast<int>(i) + 1;
+    if (field_name.ends_with(suffix[i])) return static_cast<int>(i) + 1;
   return std::nullopt;
 }
 

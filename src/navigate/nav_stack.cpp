@@ -154,19 +154,19 @@ core::RowObservation NavStack::detect_frame(Pending& frame, bool& levelled) {
 FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Pose2>& T) {
   FrameReport r;
   r.stamp = frame.stamp();
-  if (parts_.tracker && config_.stack.mode != StackMode::detect) {
-    // Malavazi 2018 sec. 2.3.1: the followed models, moved to this frame, select its points.
-    const auto T_now = T_odom_base(r.stamp);
-    const auto pose = T_now ? T_now : T;
-    parts_.pipeline->set_data_filter(pose ? parts_.tracker->data_filter(*pose) : std::nullopt);
+  if (config_.stack.mode == StackMode::detect) {
+    r.observation = detect_frame(frame, r.levelled);
+    return r;
   }
-  r.observation = detect_frame(frame, r.levelled);
-  if (config_.stack.mode == StackMode::detect) return r;
   // The frame is stamped at the start of the sweep: the tracker gets the pose of that instant.
-  const auto T_frame = T_odom_base(r.stamp);
-  if (!T_frame && !T) return r;  // no odometry yet: nothing to track against
-  r.tracking = parts_.tracker->update(r.observation, T_frame ? *T_frame : *T);
-  if (place_) estimate_place(frame, r, T_frame ? *T_frame : *T);
+  std::optional<core::Pose2> pose = T_odom_base(r.stamp);
+  if (!pose) pose = T;
+  // Malavazi 2018 sec. 2.3.1: the followed models, moved to this frame, select its points.
+  parts_.pipeline->set_data_filter(pose ? parts_.tracker->data_filter(*pose) : std::nullopt);
+  r.observation = detect_frame(frame, r.levelled);
+  if (!pose) return r;  // no odometry yet: nothing to track against
+  r.tracking = parts_.tracker->update(r.observation, *pose);
+  if (place_) estimate_place(frame, r, *pose);
   if (config_.stack.mode == StackMode::track) return r;
   const auto& p = *parts_.pipeline;
   r.end_of_row = end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking);

@@ -28,8 +28,16 @@ TEST(DataFilter, KeepsOnlyPointsInsideTheBoxesAroundTheModels) {
   EXPECT_FLOAT_EQ(kept[1].y(), -0.31f);
 }
 
+// The paper's window (Malavazi 2018 sec. 3.1.1), as track::ModelFilterConfig gives it.
+DataFilterBoxes paper_windows() {
+  DataFilterBoxes f;
+  f.init_min_range = 0.3;
+  f.init_max_range = 3.0;
+  return f;
+}
+
 TEST(DataFilter, SideWithoutModelKeepsItsPointsThirtyCentimetresToThreeMetresAway) {
-  DataFilterBoxes f;  // no model on either side: sec. 3.1.1 windows
+  const DataFilterBoxes f = paper_windows();  // no model on either side: sec. 3.1.1 windows
   const std::vector<Eigen::Vector2f> pts = {
       {0.1f, 0.1f}, {1.0f, 0.4f}, {2.0f, -1.0f}, {3.5f, 0.2f}, {0.0f, -0.29f}};
   const auto kept = filter_points(pts, f);
@@ -39,7 +47,7 @@ TEST(DataFilter, SideWithoutModelKeepsItsPointsThirtyCentimetresToThreeMetresAwa
 }
 
 TEST(DataFilter, OneModelOneWindow) {
-  DataFilterBoxes f;
+  DataFilterBoxes f = paper_windows();
   f.models[0] = SideModel{0.0, 0.4};
   f.half_width = 0.05;
   const std::vector<Eigen::Vector2f> pts = {{1.0f, 0.2f}, {1.0f, 0.42f}, {1.0f, -0.6f}};
@@ -53,7 +61,7 @@ TEST(DataFilter, NonFinitePointsAreDropped) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   const std::vector<Eigen::Vector2f> pts = {{nan, 0.5f}, {1.0f, inf}, {1.0f, 0.5f}};
-  EXPECT_EQ(filter_points(pts, DataFilterBoxes{}).size(), 1u);
+  EXPECT_EQ(filter_points(pts, paper_windows()).size(), 1u);
 }
 
 TEST(DataFilter, RandomWeedsBetweenRowsNeverReachTheFit) {

@@ -23,9 +23,11 @@ struct SideModel {
 struct DataFilterBoxes {
   /// [0] left (y > 0), [1] right (y < 0); nullopt: that side keeps its initialisation window.
   std::array<std::optional<SideModel>, 2> models;
-  double half_width = 0.4;      ///< [m] box half width around a model
-  double init_min_range = 0.3;  ///< [m] side without a model: nearest point kept (sec. 3.1.1)
-  double init_max_range = 3.0;  ///< [m] side without a model: farthest point kept (ibid.)
+  // Filled by the tracker from its config (track::ModelFilterConfig: box_half_width,
+  // box_spacing_ratio, init_min_distance, init_max_distance); no defaults restated here.
+  double half_width = 0.0;      ///< [m] box half width around a model
+  double init_min_range = 0.0;  ///< [m] side without a model: nearest point kept (sec. 3.1.1)
+  double init_max_range = 0.0;  ///< [m] side without a model: farthest point kept (ibid.)
 };
 
 /// The points of `points_base` the boxes keep (order preserved; non-finite points dropped).
