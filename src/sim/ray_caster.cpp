@@ -141,14 +141,19 @@ void RayCaster::Impl::cast16(const Eigen::Vector3f* o, const Eigen::Vector3f* d,
     const int j = i < count ? i : count - 1;
     const float tn = t_min ? t_min[j] : t_min_all;
     valid[i] = i < count && castable(o[j], d[j]) && tn <= t_max ? -1 : 0;
-    rh.ray.org_x[i] = o[j].x();
-    rh.ray.org_y[i] = o[j].y();
-    rh.ray.org_z[i] = o[j].z();
-    rh.ray.dir_x[i] = d[j].x();
-    rh.ray.dir_y[i] = d[j].y();
-    rh.ray.dir_z[i] = d[j].z();
-    rh.ray.tnear[i] = tn;
-    rh.ray.tfar[i] = t_max;
+    // An inactive lane still holds a well-formed ray: Debian's Embree 3.13.5 asserts on every
+    // lane's ray in its coherent packet path, not only on the active ones (issue 13: a LiDAR
+    // mounted at 1e19 m aborted the simulator).
+    const Eigen::Vector3f org = valid[i] ? o[j] : Eigen::Vector3f::Zero();
+    const Eigen::Vector3f dir = valid[i] ? d[j] : Eigen::Vector3f::UnitZ();
+    rh.ray.org_x[i] = org.x();
+    rh.ray.org_y[i] = org.y();
+    rh.ray.org_z[i] = org.z();
+    rh.ray.dir_x[i] = dir.x();
+    rh.ray.dir_y[i] = dir.y();
+    rh.ray.dir_z[i] = dir.z();
+    rh.ray.tnear[i] = valid[i] ? tn : 0.0f;
+    rh.ray.tfar[i] = valid[i] ? t_max : 0.0f;
     rh.ray.time[i] = 0.0f;
     rh.ray.mask[i] = 0xFFFFFFFFu;
     rh.ray.id[i] = static_cast<unsigned>(i);
