@@ -28,7 +28,7 @@ struct BenchArgs {
 };
 
 // Compares with (or rewrites) the baseline; true when nothing regressed.
-bool gate(const BenchArgs& a, const std::vector<io::RunResult>& results) {
+bool gate(const BenchArgs& a, const std::vector<io::CellResult>& results) {
   const auto now = io::gate_metrics(results);
   if (a.update_baseline) {
     io::Baseline b;

@@ -112,7 +112,7 @@ void add_render_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand(
       "render", "Draw a top view (PNG or SVG) of a field with its ground truth (rows, corridor "
                 "centres, posts, plants) and one LiDAR frame overlaid, coloured by height");
-  c->add_option("--field", a->field, "field YAML")->required()->check(CLI::ExistingFile);
+  c->add_option("--field", a->field, "field YAML or zoo:SEED:INDEX")->required()->check(check_field_arg);
   c->add_option("--out", a->out, "picture to write (.png, .svg or .pdf)")->required();
   c->add_flag("--overwrite", a->overwrite, "replace an existing --out file");
   c->add_option("--recording", a->recording, "take the frame from this recording (rownav sim --out)")->check(CLI::ExistingDirectory);

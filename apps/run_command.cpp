@@ -139,7 +139,7 @@ bool run_mission(const RunArgs& a) {
   const io::RunResult r = io::run_closed_loop(s);
   if (bar) bar->finish();
   const io::RunSummary summary = io::summarize(r, sim::FieldTruth(field), s.mission.block);
-  io::RunNames names{a.field.stem().string(),
+  io::RunNames names{field_label(a.field),
                      a.robot.stem().string(),
                      a.sensor ? a.sensor->stem().string() : "default",
                      a.mission.stem().string(),
@@ -174,9 +174,9 @@ void add_run_command(CLI::App& app) {
       "run",
       "Closed-loop mission in the simulator: the robot serves the planned corridors by "
       "itself (LiDAR rows, headland turns); writes summary.json and report.html");
-  c->add_option("--field", a->field, "field YAML (config/fields)")
+  c->add_option("--field", a->field, "field YAML (config/fields), or zoo:SEED:INDEX (rownav zoo)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(check_field_arg);
   c->add_option("--robot", a->robot, "robot YAML (config/robots)")
       ->required()
       ->check(CLI::ExistingFile);

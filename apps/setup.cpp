@@ -6,11 +6,17 @@
 #include "rownav/io/field_builder.hpp"
 #include "rownav/io/sim_setup.hpp"
 #include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/field_zoo.hpp"
 #include "rownav/sim/lidar_presets.hpp"
 
 namespace rownav::app {
 
 sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out) {
+  if (const auto ref = sim::parse_zoo_ref(file.string())) {
+    const sim::FieldConfig zoo = sim::zoo_field(ref->index, ref->seed);
+    if (config_out) *config_out = zoo;
+    return io::build_field(zoo, ".");
+  }
   const auto config = io::load_config<sim::FieldConfig>(file);
   if (config_out) *config_out = config;
   try {
@@ -30,6 +36,17 @@ sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* confi
     }
     throw;
   }
+}
+
+std::string field_label(const std::filesystem::path& file) {
+  if (const auto ref = sim::parse_zoo_ref(file.string()))
+    return sim::zoo_field(ref->index, ref->seed).name;
+  return file.stem().string();
+}
+
+std::string check_field_arg(const std::string& value) {
+  if (sim::parse_zoo_ref(value) || std::filesystem::is_regular_file(value)) return {};
+  return "File does not exist: " + value + " (a field YAML, or zoo:SEED:INDEX)";
 }
 
 sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file) {

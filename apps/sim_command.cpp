@@ -97,7 +97,7 @@ void add_sim_command(CLI::App& app) {
       "sim", "Drive a scripted path through a simulated field and write a recording directory "
              "(PCD frames, CSV odometry / IMU / GNSS / ground truth, YAML manifest) plus a "
              "top-view picture");
-  c->add_option("--field", args->field, "field YAML (config/fields/)")->required()->check(CLI::ExistingFile);
+  c->add_option("--field", args->field, "field YAML (config/fields/) or zoo:SEED:INDEX")->required()->check(check_field_arg);
   c->add_option("--robot", args->robot, "robot YAML (config/robots/); default skid-steer")->check(CLI::ExistingFile);
   c->add_option("--sensors", args->sensors, "sensors YAML (config/sensors/); default OS1-16")->check(CLI::ExistingFile);
   c->add_option("--lidar", args->lidar, "LiDAR preset overriding the sensors file (os1_16, os1_64, vlp16, sick_tim571, sick_lms111, lms_1081)");

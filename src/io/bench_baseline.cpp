@@ -48,7 +48,7 @@ BaselineMetric read_metric(const json& j, const std::string& file, const std::st
 
 }  // namespace
 
-std::map<std::string, std::optional<double>> gate_metrics(const std::vector<RunResult>& runs) {
+std::map<std::string, std::optional<double>> gate_metrics(const std::vector<CellResult>& runs) {
   std::vector<const RunSummary*> s;
   double failed = 0;
   for (const auto& r : runs) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/field_zoo.hpp"
 
 namespace rownav::io {
 
@@ -24,8 +25,15 @@ std::uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
+// The field's label: a file's stem, a zoo reference's field name (zoo_<seed>_<index>_<band>).
 std::string stem(const std::string& path) {
+  if (const auto ref = sim::parse_zoo_ref(path)) return sim::zoo_field(ref->index, ref->seed).name;
   return fs::path(path).stem().string();
+}
+
+// A zoo reference stays as it is; a file resolves against the scenario's root.
+fs::path resolve_field(const BenchScenario& s, const std::string& field) {
+  return sim::parse_zoo_ref(field) ? fs::path(field) : s.base_dir / field;
 }
 
 // The settings as written in the scenario (relative paths), one per line: the id's hash input.
@@ -60,7 +68,7 @@ void expand_matrix(const BenchScenario& s, const BenchMatrixSpec& m, std::vector
                    std::map<std::string, std::size_t>& index) {
   const std::vector<std::string> policies =
       m.row_end_policies.empty() ? std::vector<std::string>{""} : m.row_end_policies;
-  for (const auto& field : m.field_files)
+  for (const auto& field : m.field_list())
     for (const auto& robot : m.robots)
       for (const auto& sensor : m.sensors)
         for (const auto& mission : m.missions)
@@ -70,7 +78,7 @@ void expand_matrix(const BenchScenario& s, const BenchMatrixSpec& m, std::vector
                 for (const auto& pol : policies)
                   for (const auto seed : m.seed_list()) {
                     BenchCell c;
-                    c.field = s.base_dir / field;
+                    c.field = resolve_field(s, field);
                     c.robot = s.base_dir / robot;
                     c.sensor = s.base_dir / sensor;
                     c.mission = s.base_dir / mission;
@@ -104,7 +112,7 @@ void expand_matrix(const BenchScenario& s, const BenchMatrixSpec& m, std::vector
 }  // namespace
 
 std::string BenchCell::field_name() const {
-  return field.stem().string();
+  return stem(field.string());
 }
 
 std::string BenchCell::pipeline() const {
@@ -120,13 +128,14 @@ std::vector<std::string> BenchCell::run_args(const fs::path& out_dir) const {
                                 "--robot",      robot.string(),
                                 "--sensor",     sensor.string(),
                                 "--mission",    mission.string(),
-                                "--detector",   detector,
                                 "--tracker",    tracker,
                                 "--controller", controller,
                                 "--seed",       std::to_string(seed),
                                 "--time-limit", detail::yaml_format_double(time_limit),
                                 "--out",        out_dir.string(),
                                 "--quiet"};
+  // `default`: the crop's detector (the detection config's `detector:` key, as `rownav run`).
+  if (detector != kCropDetector) a.insert(a.end(), {"--detector", detector});
   if (!row_end_policy.empty()) a.insert(a.end(), {"--row-end-policy", row_end_policy});
   a.insert(a.end(), extra_args.begin(), extra_args.end());
   return a;

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/field_zoo.hpp"
 
 namespace rownav::io {
 
@@ -54,7 +55,17 @@ void check_files_exist(const BenchScenario& s, const YAML::Node& root, const std
 
 void BenchMatrixSpec::validate() const {
   core::check(is_slug(name), "name", "must be a name (letters, digits, _ -)");
-  check_list(field_files, "fields", false);
+  if (zoo_count == 0 || !field_files.empty()) check_list(field_files, "fields", false);
+  core::check_non_negative(zoo_count, "zoo_count");
+  core::check_non_negative(zoo_first, "zoo_first");
+  for (std::size_t i = 0; i < zoo_bands.size(); ++i) {
+    bool known = false;
+    for (int b = 0; b < sim::kZooBands; ++b) known = known || zoo_bands[i] == sim::zoo_band_name(b);
+    core::check(known, "zoo_bands[" + std::to_string(i) + "]",
+                "not a zoo band (vineyard_narrow, vineyard_wide, orchard_free, orchard_hedgerow, "
+                "row_crop)");
+  }
+  core::check(zoo_count == 0 || !field_list().empty(), "zoo_bands", "keeps no zoo field");
   check_list(robots, "robots", false);
   check_list(sensors, "sensors", false);
   check_list(missions, "missions", false);
@@ -75,6 +86,16 @@ std::vector<std::uint64_t> BenchMatrixSpec::seed_list() const {
   if (!seeds.empty()) return seeds;
   std::vector<std::uint64_t> out;
   for (int i = 1; i <= seed_count; ++i) out.push_back(static_cast<std::uint64_t>(i));
+  return out;
+}
+
+std::vector<std::string> BenchMatrixSpec::field_list() const {
+  std::vector<std::string> out = field_files;
+  for (int i = zoo_first; i < zoo_first + zoo_count; ++i) {
+    const auto band = sim::zoo_band_name(i % sim::kZooBands);
+    if (zoo_bands.empty() || std::find(zoo_bands.begin(), zoo_bands.end(), band) != zoo_bands.end())
+      out.push_back(sim::zoo_ref_text({zoo_seed, i}));
+  }
   return out;
 }
 

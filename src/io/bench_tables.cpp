@@ -8,6 +8,7 @@
 #include <numeric>
 #include <set>
 
+#include "rownav/io/bench_fields_table.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/paper_figures.hpp"
 
@@ -25,7 +26,7 @@ struct Group {
 };
 
 // Runs feeding table `t` that have a summary, grouped by key(cell), in order of first appearance.
-std::vector<Group> group_by(const std::vector<RunResult>& all, BenchTable t,
+std::vector<Group> group_by(const std::vector<CellResult>& all, BenchTable t,
                             const std::function<std::vector<std::string>(const BenchCell&)>& key) {
   std::vector<Group> out;
   for (const auto& r : all) {
@@ -57,7 +58,7 @@ std::vector<std::string> fields_in(const std::vector<Group>& groups) {
   return out;
 }
 
-void add_malavazi(const std::vector<RunResult>& all, std::vector<ResultTable>& out) {
+void add_malavazi(const std::vector<CellResult>& all, std::vector<ResultTable>& out) {
   const auto groups = group_by(all, BenchTable::malavazi_004, [](const BenchCell& c) {
     return std::vector<std::string>{
         c.field_name(), c.detector,
@@ -99,7 +100,7 @@ void add_malavazi(const std::vector<RunResult>& all, std::vector<ResultTable>& o
   }
 }
 
-void add_bertoglio(const std::vector<RunResult>& all, std::vector<ResultTable>& out) {
+void add_bertoglio(const std::vector<CellResult>& all, std::vector<ResultTable>& out) {
   const auto by_pipeline = group_by(all, BenchTable::bertoglio_003, [](const BenchCell& c) {
     return std::vector<std::string>{c.field_name(), c.pipeline()};
   });
@@ -154,7 +155,7 @@ Value corridor_rmse(const Runs& runs, double corridor) {
   return n ? Value(sum / n) : std::nullopt;
 }
 
-void add_nehme(const std::vector<RunResult>& all, std::vector<ResultTable>& out) {
+void add_nehme(const std::vector<CellResult>& all, std::vector<ResultTable>& out) {
   const auto groups = group_by(all, BenchTable::nehme_000, [](const BenchCell& c) {
     return std::vector<std::string>{c.field_name(), c.pipeline()};
   });
@@ -190,7 +191,7 @@ void add_nehme(const std::vector<RunResult>& all, std::vector<ResultTable>& out)
   }
 }
 
-void add_lan(const std::vector<RunResult>& all, std::vector<ResultTable>& out) {
+void add_lan(const std::vector<CellResult>& all, std::vector<ResultTable>& out) {
   const auto groups = group_by(all, BenchTable::lan_001, [](const BenchCell& c) {
     return std::vector<std::string>{c.field_name(), c.pipeline()};
   });
@@ -228,7 +229,7 @@ Value time_ratio(const Runs& runs) {
   return wall > 0 ? Value(sim / wall) : std::nullopt;
 }
 
-void add_timing(const std::vector<RunResult>& all, std::vector<ResultTable>& out) {
+void add_timing(const std::vector<CellResult>& all, std::vector<ResultTable>& out) {
   const auto groups = group_by(all, BenchTable::timing, [](const BenchCell& c) {
     return std::vector<std::string>{c.pipeline()};
   });
@@ -267,11 +268,11 @@ std::optional<double> aggregate(const std::vector<const RunSummary*>& runs, cons
   return std::nullopt;
 }
 
-std::vector<RunResult> collect_results(const std::vector<BenchCell>& cells, const fs::path& out,
+std::vector<CellResult> collect_results(const std::vector<BenchCell>& cells, const fs::path& out,
                                        std::vector<std::string>* warnings) {
-  std::vector<RunResult> results;
+  std::vector<CellResult> results;
   for (const auto& c : cells) {
-    RunResult r{c, std::nullopt};
+    CellResult r{c, std::nullopt};
     const fs::path file = cell_dir(out, c) / "summary.json";
     if (fs::is_regular_file(file)) try {
         r.summary = read_summary(file);
@@ -283,13 +284,14 @@ std::vector<RunResult> collect_results(const std::vector<BenchCell>& cells, cons
   return results;
 }
 
-std::vector<ResultTable> build_tables(const std::vector<RunResult>& runs) {
+std::vector<ResultTable> build_tables(const std::vector<CellResult>& runs) {
   std::vector<ResultTable> out;
   add_malavazi(runs, out);
   add_bertoglio(runs, out);
   add_nehme(runs, out);
   add_lan(runs, out);
   add_timing(runs, out);
+  add_fields_tables(runs, out);
   return out;
 }
 

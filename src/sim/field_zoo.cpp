@@ -1,6 +1,7 @@
 #include "rownav/sim/field_zoo.hpp"
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -144,6 +145,27 @@ FieldConfig zoo_field(int index, std::uint64_t seed, const ZooConfig& config) {
   draw_terrain(f, config, rng);
   f.validate();
   return f;
+}
+
+std::string zoo_ref_text(const ZooRef& ref) {
+  return "zoo:" + std::to_string(ref.seed) + ":" + std::to_string(ref.index);
+}
+
+std::optional<ZooRef> parse_zoo_ref(std::string_view text) {
+  constexpr std::string_view prefix = "zoo:";
+  if (!text.starts_with(prefix)) return std::nullopt;
+  text.remove_prefix(prefix.size());
+  const auto colon = text.find(':');
+  if (colon == std::string_view::npos) return std::nullopt;
+  ZooRef ref;
+  const auto whole = [](std::string_view s, auto& value) {
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    return ec == std::errc() && end == s.data() + s.size() && !s.empty();
+  };
+  if (!whole(text.substr(0, colon), ref.seed) || !whole(text.substr(colon + 1), ref.index) ||
+      ref.index < 0)
+    return std::nullopt;
+  return ref;
 }
 
 }  // namespace rownav::sim

@@ -112,6 +112,41 @@ TEST(BenchMatrix, RunArgsCarryEverySetting) {
   EXPECT_EQ(after("--field"), (dir.path() / "f1.yaml").lexically_normal().string());
 }
 
+// A matrix over the seeded zoo: fields by reference, bands filtered, the crop's detector.
+fs::path write_zoo_scenario(const fs::path& dir, const std::string& bands) {
+  for (const char* f : {"robot.yaml", "sensor.yaml", "mission.yaml"}) std::ofstream(dir / f) << "{}\n";
+  const auto file = dir / "zoo.yaml";
+  std::ofstream(file) << "name: zoo\nroot: .\nmatrices:\n  - name: z\n    zoo_count: 10\n"
+                         "    zoo_first: 5\n    zoo_seed: 3\n    zoo_bands: " << bands << "\n"
+                         "    robots: [robot.yaml]\n    sensors: [sensor.yaml]\n"
+                         "    missions: [mission.yaml]\n    detectors: [default]\n"
+                         "    trackers: [model_filter]\n    controllers: [stanley]\n"
+                         "    seeds: [1]\n    tables: [fields]\n";
+  return file;
+}
+
+TEST(BenchMatrix, ZooFieldsExpandByReferenceWithTheCropDetector) {
+  TempDir dir("bench");
+  const auto cells = expand_scenario(load_scenario(write_zoo_scenario(dir.path(), "[row_crop, orchard_free]")));
+  // Indices 5..14: band i % 5; row_crop is band 4 (9, 14), orchard_free band 2 (7, 12).
+  ASSERT_EQ(cells.size(), 4u);
+  std::set<std::string> refs;
+  for (const auto& c : cells) refs.insert(c.field.string());
+  EXPECT_EQ(refs, (std::set<std::string>{"zoo:3:7", "zoo:3:9", "zoo:3:12", "zoo:3:14"}));
+  EXPECT_EQ(cells[0].field_name(), "zoo_3_7_orchard_free");
+  EXPECT_EQ(cells[0].id.rfind("zoo_3_7_orchard_free_default_", 0), 0u) << cells[0].id;
+  const auto a = cells[0].run_args("OUT/x");
+  EXPECT_EQ(std::find(a.begin(), a.end(), "--detector"), a.end());  // the crop's detector
+  const auto field = std::find(a.begin(), a.end(), "--field");
+  ASSERT_NE(field, a.end());
+  EXPECT_EQ(*(field + 1), "zoo:3:7");
+  EXPECT_NE(load_error(write_zoo_scenario(dir.path(), "[vineyard]"))
+                .find("matrices[0].zoo_bands[0]: not a zoo band"),
+            std::string::npos);
+  EXPECT_EQ(load_error(write_zoo_scenario(dir.path(), "[]")), "");  // no filter: every band
+  EXPECT_EQ(expand_scenario(load_scenario(write_zoo_scenario(dir.path(), "[]"))).size(), 10u);
+}
+
 TEST(BenchScenario, RepositoryScenariosAndFieldsLoad) {
   const fs::path src(ROWNAV_SOURCE_DIR);
   const auto quick = expand_scenario(load_scenario(src / "bench/scenarios/quick.yaml", false));
@@ -121,6 +156,8 @@ TEST(BenchScenario, RepositoryScenariosAndFieldsLoad) {
   const auto malavazi =
       expand_scenario(load_scenario(src / "bench/scenarios/malavazi.yaml", false));
   ASSERT_EQ(malavazi.size(), 240u);  // 4 detectors x 2 variants x 3 levels x 10 seeds
+  const auto zoo = expand_scenario(load_scenario(src / "bench/scenarios/zoo.yaml", false));
+  EXPECT_EQ(zoo.size(), 100u + 17u);  // as stated in zoo.yaml
   const auto& args = malavazi.front().extra_args;  // config files resolved against the root
   const auto nav = std::find(args.begin(), args.end(), "--nav-config");
   ASSERT_NE(nav, args.end());

@@ -30,7 +30,7 @@ BenchCell cell(const std::string& id, const std::string& det, const std::string&
 }
 
 // Three runs of pearl+model_filter (one without summary), one of ruby+none.
-std::vector<RunResult> hand_written(const fs::path& out) {
+std::vector<CellResult> hand_written(const fs::path& out) {
   const std::vector<std::pair<BenchCell, std::string>> runs = {
       {cell("a", "pearl", "model_filter", {BenchTable::malavazi_004, BenchTable::nehme_000}),
        R"({"success": true, "plants_crushed": 0, "path_length_ratio_mean": 1.02,

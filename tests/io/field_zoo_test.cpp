@@ -77,6 +77,18 @@ TEST(FieldZoo, FirstBandsGenerate) {
   }
 }
 
+TEST(FieldZoo, ReferenceRoundTripsAndRejectsWhatIsNotOne) {
+  const ZooRef ref{7, 17};
+  const auto back = parse_zoo_ref(zoo_ref_text(ref));
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->seed, 7u);
+  EXPECT_EQ(back->index, 17);
+  EXPECT_EQ(zoo_ref_text(ref), "zoo:7:17");
+  for (const char* bad : {"zoo:", "zoo:1", "zoo:1:", "zoo::3", "zoo:1:-2", "zoo:a:1", "zoo:1:2x",
+                          "config/fields/zoo:1:2.yaml", "field.yaml", "zoo:1:99999999999"})
+    EXPECT_FALSE(parse_zoo_ref(bad)) << bad;
+}
+
 TEST(FieldZoo, ConfigValidates) {
   ZooConfig z;
   z.crop_row_max = 0.1;

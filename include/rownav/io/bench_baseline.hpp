@@ -33,7 +33,7 @@ struct Baseline {
 /// The gated metrics over the runs with a summary: success_rate [%], in_row_mean_displacement
 /// (mean), in_row_max_displacement (max), plants_crushed (sum), correct_entries (sum),
 /// frame_latency_median_ms (median), failed_cells (cells without summary.json).
-std::map<std::string, std::optional<double>> gate_metrics(const std::vector<RunResult>& runs);
+std::map<std::string, std::optional<double>> gate_metrics(const std::vector<CellResult>& runs);
 
 /// Reads a baseline; InputError (one line) when missing or malformed.
 Baseline read_baseline(const std::filesystem::path& file);

@@ -4,25 +4,30 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rownav/io/bench_scenario.hpp"
 
 namespace rownav::io {
 
+/// Detector name meaning "the crop's default detector" (no `--detector` passed to the run).
+inline constexpr std::string_view kCropDetector = "default";
+
 /// One run of the matrix.
 struct BenchCell {
   std::string id;                     ///< stable: same settings, same id (folder name)
   std::vector<std::string> matrices;  ///< matrices that contain this run (identical runs merge)
   std::vector<BenchTable> tables;     ///< tables it feeds (union over its matrices)
-  std::filesystem::path field, robot, sensor, mission;  ///< files (resolved against the root)
+  std::filesystem::path field, robot, sensor, mission;  ///< files (resolved against the root);
+                                                        ///< `field` may be a zoo reference
   std::string detector, tracker, controller;
   std::string row_end_policy;  ///< empty: the runner's default
   std::uint64_t seed = 0;
   double time_limit = 0.0;              ///< [s]
   std::vector<std::string> extra_args;  ///< appended to the run's options
 
-  /// File stem of `field` (the field's label in tables).
+  /// File stem of `field`, or the zoo field's name (the field's label in tables).
   std::string field_name() const;
   /// "detector+tracker+controller" (the pipeline's label in tables).
   std::string pipeline() const;

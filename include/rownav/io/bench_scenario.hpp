@@ -21,12 +21,17 @@ enum class BenchTable : std::uint8_t {
   nehme_000,      ///< 000 Tables 1-2: lateral RMSE per corridor, per field
   lan_001,        ///< 001 Tables 2-3: line slope / intercept, lateral / heading errors
   timing,         ///< per-frame latency and simulated-to-wall time ratio per pipeline
+  fields,         ///< success and accuracy per field group (zoo band or field), failures listed
 };
 
 /// One cartesian product of run settings. Paths are relative to the scenario's root.
 struct BenchMatrixSpec {
   std::string name;                           ///< label of the matrix (letters, digits, _ -)
   std::vector<std::string> field_files;       ///< key `fields`: sim::FieldConfig YAML files
+  int zoo_count = 0;             ///< [-] zoo fields zoo_first .. + zoo_count - 1 added to `fields`
+  int zoo_first = 0;             ///< [-] index of the first zoo field (sim/field_zoo.hpp)
+  std::uint64_t zoo_seed = 1;    ///< zoo seed
+  std::vector<std::string> zoo_bands;  ///< zoo bands kept (empty: all; sim::zoo_band_name)
   std::vector<std::string> robots;            ///< robot files (config/robots/*.yaml)
   std::vector<std::string> sensors;           ///< sensor files (config/sensors/*.yaml)
   std::vector<std::string> missions;          ///< mission files (config/missions/*.yaml)
@@ -46,6 +51,10 @@ struct BenchMatrixSpec {
   static void fields(S& s, V& v) {
     v("name", s.name);
     v("fields", s.field_files);
+    v("zoo_count", s.zoo_count);
+    v("zoo_first", s.zoo_first);
+    v("zoo_seed", s.zoo_seed);
+    v("zoo_bands", s.zoo_bands);
     v("robots", s.robots);
     v("sensors", s.sensors);
     v("missions", s.missions);
@@ -64,6 +73,8 @@ struct BenchMatrixSpec {
   void validate() const;
   /// The seeds of a run: `seeds`, or 1..seed_count.
   std::vector<std::uint64_t> seed_list() const;
+  /// `fields`, then the kept zoo fields as references "zoo:SEED:INDEX".
+  std::vector<std::string> field_list() const;
 };
 
 /// A scenario file.
@@ -96,10 +107,11 @@ BenchScenario load_scenario(const std::filesystem::path& file, bool check_files 
 template <>
 struct rownav::core::EnumNames<rownav::io::BenchTable> {
   using E = rownav::io::BenchTable;
-  static constexpr std::array<std::pair<E, std::string_view>, 5> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 6> values{
       {{E::malavazi_004, "malavazi_004"},
        {E::bertoglio_003, "bertoglio_003"},
        {E::nehme_000, "nehme_000"},
        {E::lan_001, "lan_001"},
-       {E::timing, "timing"}}};
+       {E::timing, "timing"},
+       {E::fields, "fields"}}};
 };

@@ -28,8 +28,9 @@
 
 namespace rownav::io {
 
-/// A cell and its summary (nullopt when the run left none).
-struct RunResult {
+/// A cell and its summary (nullopt when the run left none). Not io::RunResult (closed_loop_runner.hpp):
+/// two classes of one name in one namespace broke the tests linking both (ODR).
+struct CellResult {
   BenchCell cell;
   std::optional<RunSummary> summary;
 };
@@ -51,13 +52,13 @@ struct ResultTable {
 
 /// Reads OUT/runs/<id>/summary.json of every cell; a malformed one counts as missing and is
 /// reported on `warnings` (one line each).
-std::vector<RunResult> collect_results(const std::vector<BenchCell>& cells,
+std::vector<CellResult> collect_results(const std::vector<BenchCell>& cells,
                                        const std::filesystem::path& out,
                                        std::vector<std::string>* warnings = nullptr);
 
 /// The tables fed by the runs, in the order of BenchTable, rows in the order of first
 /// appearance. Tables without any run are left out.
-std::vector<ResultTable> build_tables(const std::vector<RunResult>& runs);
+std::vector<ResultTable> build_tables(const std::vector<CellResult>& runs);
 
 /// Mean, max, min or median of `key` over the runs that have it; nullopt when none has.
 enum class Aggregate { mean, max, min, median };

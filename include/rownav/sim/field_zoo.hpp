@@ -3,6 +3,7 @@
 /// measured"): vineyards narrow to wide with thin to solid canopy, free-standing and hedgerow
 /// orchards, row crops; spacing 0.5-7 m, gaps, slopes, curvature, weeds.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -92,5 +93,18 @@ std::string_view zoo_band_name(int band);
 /// same config; fields of different indices are independent draws.
 /// @throws std::invalid_argument for a negative index or an invalid config
 FieldConfig zoo_field(int index, std::uint64_t seed, const ZooConfig& config = {});
+
+/// A zoo field named by reference instead of a file: "zoo:SEED:INDEX" (`rownav run --field
+/// zoo:1:17`, bench scenario matrices' `zoo_count`).
+struct ZooRef {
+  std::uint64_t seed = 1;  ///< zoo seed
+  int index = 0;           ///< field index (>= 0)
+};
+
+/// "zoo:SEED:INDEX".
+std::string zoo_ref_text(const ZooRef& ref);
+
+/// The reference in `text` when it is one ("zoo:" then two non-negative integers), else nullopt.
+std::optional<ZooRef> parse_zoo_ref(std::string_view text);
 
 }  // namespace rownav::sim
