@@ -48,7 +48,8 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
       parts_(std::move(parts)),
       localizer_(config.localizer),
       external_(config.stack.odometry_history, config.stack.max_extrapolation),
-      place_input_((config.validate(), config.place)) {
+      place_input_((config.validate(), config.place)),
+      cover_(config.stack.obstacles.cover) {
   const StackMode mode = config_.stack.mode;
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
@@ -188,6 +189,22 @@ void NavStack::estimate_place(const Pending& frame, FrameReport& r, const core::
   r.place = place_->update(place_input_.points(), place_input_.labels(), T, r.stamp);
 }
 
+ObstacleBandConfig NavStack::obstacle_band(const core::PointCloud& cloud_base) {
+  ObstacleBandConfig band = config_.stack.obstacles;
+  // Issue 10: what the robot drives through is no obstacle (ground_cover.hpp).
+  cover_.update(cloud_base, parts_.pipeline->last_ground(),
+                {config_.robot.base_to_front, config_.robot.width / 2.0});
+  band.min_height = cover_.obstacle_min_height(band.min_height);
+  band.max_height = std::max(band.min_height, band.max_height);
+  return band;
+}
+
+double NavStack::robot_top() const {
+  const auto& band = config_.stack.obstacles;
+  if (band.robot_top > 0.0) return band.robot_top;
+  return parts_.pipeline->T_base_lidar().translation().z() + band.sensor_top;
+}
+
 NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameReport& report) {
   NavInput in;
   in.stamp = stamp;
@@ -201,7 +218,8 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   const auto& cloud = parts_.pipeline->last_cloud_base();
   std::vector<Eigen::Vector2f> tall;
   if (!cloud.points.empty()) {
-    tall = obstacle_points(cloud, parts_.pipeline->last_ground(), config_.stack.obstacles);
+    tall = obstacle_points(cloud, parts_.pipeline->last_ground(), obstacle_band(cloud),
+                           robot_top());
     in.obstacle_points_base = std::span<const Eigen::Vector2f>(tall);
   } else if (!config_.stack.planar_obstacles) {
     in.obstacle_points_base = std::span<const Eigen::Vector2f>();  // drives over them

@@ -126,13 +126,12 @@ NavOutput Navigator::step(const NavInput& in) {
   if (last_seen_ < 0.0) last_seen_ = in.stamp;
   // Outside a row too (issue 13, a person walking in): the person's shadow on the rows ahead
   // looked like the row end, and `exiting` then drove into it by odometry.
-  if (state_ != NavState::in_row && state_ != NavState::done && state_ != NavState::safe_stop &&
-      obstacle_ahead(in)) {
-    stop(StopReason::obstacle, out, in.stamp,
-         "obstacle within " + fmt(config_.stop_distance) + " m (" +
-             std::string(core::enum_name(state_)) + ")");
-    return finish(std::move(out));
-  }
+  if (state_ != NavState::in_row && state_ != NavState::done && state_ != NavState::safe_stop)
+    if (const auto obstacle = obstacle_ahead(in)) {
+      stop(StopReason::obstacle, out, in.stamp,
+           *obstacle + " (" + std::string(core::enum_name(state_)) + ")");
+      return finish(std::move(out));
+    }
   switch (state_) {
     case NavState::in_row:
       in_row(in, out);
@@ -199,15 +198,23 @@ NavOutput Navigator::hold(double stamp, const core::Pose2& T_odom_base,
   return finish(std::move(out));
 }
 
-bool Navigator::obstacle_ahead(const NavInput& in) const {
+std::optional<std::string> Navigator::obstacle_ahead(const NavInput& in) const {
   const double x0 = in.robot.base_to_front, x1 = x0 + config_.stop_distance;
   const double half = in.robot.width / 2.0;
   int n = 0;
+  double nearest = x1, y_lo = half, y_hi = -half;
   for (const auto& p : in.obstacle_points_base.value_or(in.points_base))
     if (std::isfinite(p.x()) && std::isfinite(p.y()) && p.x() > x0 && p.x() < x1 &&
-        std::abs(p.y()) < half)
+        std::abs(p.y()) < half) {
       ++n;
-  return n >= config_.obstacle_min_points;
+      nearest = std::min(nearest, double(p.x()) - x0);
+      y_lo = std::min(y_lo, double(p.y())), y_hi = std::max(y_hi, double(p.y()));
+    }
+  if (n < config_.obstacle_min_points) return std::nullopt;
+  // Where it is, so that a user can tell a person from a weed or a branch in the log.
+  return "obstacle within " + fmt(config_.stop_distance) + " m: " + std::to_string(n) +
+         " points, nearest " + fmt(nearest) + " m ahead of the front, y " + fmt(y_lo) + " to " +
+         fmt(y_hi) + " m";
 }
 
 void Navigator::in_row(const NavInput& in, NavOutput& out) {
@@ -221,9 +228,8 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
                          ? " and no points in the detection window (sensor above the crop, "
                            "or pointed away from it?)"
                          : ""));
-  if (obstacle_ahead(in))
-    return stop(StopReason::obstacle, out, in.stamp,
-                "obstacle within " + fmt(config_.stop_distance) + " m");
+  if (const auto obstacle = obstacle_ahead(in))
+    return stop(StopReason::obstacle, out, in.stamp, *obstacle);
   ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
   check_lane(in, out);
   control::ControlInput c;

@@ -2,26 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include "common/flat_ground.hpp"
+
 #include <cmath>
 
 namespace rownav::navigate {
 namespace {
 
-core::PointXYZIRT pt(float x, float y, float z) {
-  core::PointXYZIRT p;
-  p.x = x, p.y = y, p.z = z;
-  return p;
-}
-
-/// Flat ground at z = 0 (a lowest-cell grid over a floor of points).
-preprocess::GroundEstimator flat_ground() {
-  std::vector<core::PointXYZIRT> floor;
-  for (float x = -2.0f; x <= 8.0f; x += 0.25f)
-    for (float y = -3.0f; y <= 3.0f; y += 0.25f) floor.push_back(pt(x, y, 0.0f));
-  preprocess::GroundEstimator g;
-  g.estimate(floor);
-  return g;
-}
+using test::flat_ground;
+using test::pt;
 
 TEST(ObstaclePoints, WeedsBelowTheBandAreGroundCoverAPersonOrABoxIsAnObstacle) {
   const ObstacleBandConfig band;
@@ -61,6 +50,20 @@ TEST(ObstaclePoints, HeightsAreAboveTheLocalGroundOnASlope) {
   const auto pts = obstacle_points(c, g, ObstacleBandConfig{});
   ASSERT_EQ(pts.size(), 1u);
   EXPECT_FLOAT_EQ(pts[0].y(), 0.2f);
+}
+
+TEST(ObstaclePoints, WhatIsHigherThanTheRobotsTopPassesOverIt) {
+  // Issue 10: a crown hanging 0.9 m over the corridor passes over a robot whose top is 0.85 m;
+  // the trunk of a person under it does not.
+  ObstacleBandConfig band;
+  core::PointCloud c;
+  for (float y = -0.3f; y <= 0.3f; y += 0.1f) c.points.push_back(pt(1.0f, y, 0.9f));  // crown
+  for (float z = 0.4f; z < 1.7f; z += 0.1f) c.points.push_back(pt(2.0f, 0.0f, z));    // person
+  const auto all = obstacle_points(c, flat_ground(), band);
+  const auto under = obstacle_points(c, flat_ground(), band, 0.85);
+  EXPECT_EQ(all.size(), 7u + 13u);
+  ASSERT_EQ(under.size(), 5u);  // the person's 0.4 .. 0.8 m
+  for (const auto& p : under) EXPECT_FLOAT_EQ(p.x(), 2.0f);
 }
 
 }  // namespace

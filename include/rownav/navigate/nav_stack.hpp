@@ -27,6 +27,7 @@
 #include "rownav/localize/localizer.hpp"
 #include "rownav/localize/pose_history.hpp"
 #include "rownav/map/place_estimator.hpp"
+#include "rownav/navigate/ground_cover.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
 #include "rownav/navigate/navigator.hpp"
 #include "rownav/navigate/place_input.hpp"
@@ -135,6 +136,8 @@ class NavStack {
   core::RowObservation detect_frame(Pending& frame, bool& levelled);
   void estimate_place(const Pending& frame, FrameReport& report, const core::Pose2& T);
   NavOutput navigate_frame(double stamp, const core::Pose2& T, FrameReport& report);
+  ObstacleBandConfig obstacle_band(const core::PointCloud& cloud_base);  // this frame's band
+  double robot_top() const;  // [m] base z above which points pass over the robot
   void measure_period(double frame_stamp);
   bool accept_frame(double frame_stamp);  // false: dropped (late, duplicate, not finite)
   void apply(const NavOutput& out);
@@ -152,6 +155,7 @@ class NavStack {
   localize::Localizer localizer_;
   localize::PoseHistory external_;
   PlaceInput place_input_;  // after the members built before validation (config_.validate())
+  GroundCoverEstimator cover_;  // validated config
   std::deque<core::ImuSample> imu_;
   std::unique_ptr<Pending> pending_;
   std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;  // last_cloud_stamp_: any frame

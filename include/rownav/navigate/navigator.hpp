@@ -227,7 +227,8 @@ class Navigator {
   static std::string fmt(double v);
   void start_turn(const core::Pose2& T, NavOutput& out, double stamp);
   void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
-  bool obstacle_ahead(const NavInput& in) const;
+  /// The stop's message when >= obstacle_min_points points lie in the stop box, else nullopt.
+  std::optional<std::string> obstacle_ahead(const NavInput& in) const;
   /// [m] how far past the row end the exit drives (exit_distance, or the canopy's reach).
   double exit_distance(const NavInput& in) const;
   core::Twist2 follow_line(const core::Line2& line, const core::Pose2& T, double v) const;
