@@ -257,6 +257,21 @@ TEST_F(Cli, RenderWritesPngSvgAndPdfLiveAndFromTheRecording) {
   EXPECT_FALSE(fs::exists(*dir_ / "v.bmp"));
 }
 
+TEST(CliZoo, AZooReferenceIsAFieldAndABadOneIsAOneLineError) {
+  TempDir dir("zoo");
+  // Field 4 of zoo 1 is a row crop: `render` builds it from the reference alone.
+  Result r = rownav(dir.path(), "render --field zoo:1:4 --out zoo.png");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(has_png_signature(dir / "zoo.png"));
+  r = rownav(dir.path(), "zoo --first 4 --count 1");
+  EXPECT_NE(r.out.find("zoo_1_4_row_crop"), std::string::npos) << r.out;
+  r = rownav(dir.path(), "render --field zoo:1:x --out bad.png");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("zoo:SEED:INDEX"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "bad.png"));
+}
+
 TEST(CliConfig, DumpedDefaultsAreAcceptedBack) {
   TempDir dir("config");
   for (const char* what : {"field", "robot", "sensors", "path"}) {
