@@ -21,6 +21,7 @@
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
 #include "run_mission.hpp"
+#include "rownav/sim/field_zoo.hpp"
 #include "setup.hpp"
 
 namespace rownav::app {
@@ -139,7 +140,7 @@ bool run_mission(const RunArgs& a) {
   const io::RunResult r = io::run_closed_loop(s);
   if (bar) bar->finish();
   const io::RunSummary summary = io::summarize(r, sim::FieldTruth(field), s.mission.block);
-  io::RunNames names{field_label(a.field),
+  io::RunNames names{sim::field_label(a.field),
                      a.robot.stem().string(),
                      a.sensor ? a.sensor->stem().string() : "default",
                      a.mission.stem().string(),

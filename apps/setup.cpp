@@ -38,12 +38,6 @@ sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* confi
   }
 }
 
-std::string field_label(const std::filesystem::path& file) {
-  if (const auto ref = sim::parse_zoo_ref(file.string()))
-    return sim::zoo_field(ref->index, ref->seed).name;
-  return file.stem().string();
-}
-
 std::string check_field_arg(const std::string& value) {
   if (sim::parse_zoo_ref(value) || std::filesystem::is_regular_file(value)) return {};
   return "File does not exist: " + value + " (a field YAML, or zoo:SEED:INDEX)";

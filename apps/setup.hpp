@@ -26,8 +26,6 @@ struct Setup {
 /// Builds the field of a field YAML (relative paths inside resolve against its folder), or of a
 /// zoo reference "zoo:SEED:INDEX" (sim/field_zoo.hpp).
 sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out = nullptr);
-/// The field's label in reports: the file stem, or the zoo field's name.
-std::string field_label(const std::filesystem::path& file);
 /// `--field` check: an existing file or a zoo reference (empty string when valid).
 std::string check_field_arg(const std::string& value);
 sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file);

@@ -20,12 +20,6 @@ struct ZooOptions {
   bool overwrite = false;
 };
 
-double row_spacing(const sim::FieldConfig& c) {
-  if (c.kind == sim::FieldKind::vineyard) return c.vineyard.row_spacing;
-  if (c.kind == sim::FieldKind::orchard) return c.orchard.row_spacing;
-  return c.row_crop.resolved().row_spacing;
-}
-
 /// Lists the fields; with --out writes each as <out>/<name>.yaml and prints the `fields:` list
 /// a bench scenario matrix takes (paths relative to the folder the scenario's root names).
 void run_zoo(const ZooOptions& o) {
@@ -35,7 +29,7 @@ void run_zoo(const ZooOptions& o) {
     const sim::FieldConfig c = sim::zoo_field(i, o.seed, z);
     if (o.out.empty()) {
       std::printf("%4d %-36s %-9s spacing %.2f m, slope %.1f / %.1f deg\n", i, c.name.c_str(),
-                  std::string(core::enum_name(c.kind)).c_str(), row_spacing(c),
+                  std::string(core::enum_name(c.kind)).c_str(), sim::nominal_row_spacing(c),
                   c.terrain.slope_x_deg, c.terrain.slope_y_deg);
       continue;
     }

@@ -20,23 +20,12 @@ struct Group {
   double spacing_max = 0.0;
 };
 
-double row_spacing(const sim::FieldConfig& c) {
-  switch (c.kind) {
-    case sim::FieldKind::vineyard:
-      return c.vineyard.row_spacing;
-    case sim::FieldKind::orchard:
-      return c.orchard.row_spacing;
-    default:
-      return c.row_crop.resolved().row_spacing;
-  }
-}
-
 // Zoo fields group by band (and carry their spacing); other fields by name.
 std::string group_of(const BenchCell& c, double* spacing) {
   const auto ref = sim::parse_zoo_ref(c.field.string());
   if (!ref) return c.field_name();
   const sim::FieldConfig f = sim::zoo_field(ref->index, ref->seed);
-  *spacing = row_spacing(f);
+  *spacing = sim::nominal_row_spacing(f);
   return "zoo " + std::string(sim::zoo_band_name(ref->index % sim::kZooBands));
 }
 

@@ -25,12 +25,6 @@ std::uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
-// The field's label: a file's stem, a zoo reference's field name (zoo_<seed>_<index>_<band>).
-std::string stem(const std::string& path) {
-  if (const auto ref = sim::parse_zoo_ref(path)) return sim::zoo_field(ref->index, ref->seed).name;
-  return fs::path(path).stem().string();
-}
-
 // A zoo reference stays as it is; a file resolves against the scenario's root.
 fs::path resolve_field(const BenchScenario& s, const std::string& field) {
   return sim::parse_zoo_ref(field) ? fs::path(field) : s.base_dir / field;
@@ -54,7 +48,7 @@ std::vector<std::string> with_configs(std::vector<std::string> paths, const Benc
 }
 
 std::string make_id(const std::vector<std::string>& paths, const BenchCell& c) {
-  std::string slug = stem(paths[0]) + "_" + c.detector + "_" + c.tracker + "_" + c.controller;
+  std::string slug = sim::field_label(paths[0]) + "_" + c.detector + "_" + c.tracker + "_" + c.controller;
   if (!c.row_end_policy.empty()) slug += "_" + c.row_end_policy;
   slug += "_s" + std::to_string(c.seed);
   char hash[16];
@@ -112,7 +106,7 @@ void expand_matrix(const BenchScenario& s, const BenchMatrixSpec& m, std::vector
 }  // namespace
 
 std::string BenchCell::field_name() const {
-  return stem(field.string());
+  return sim::field_label(field);
 }
 
 std::string BenchCell::pipeline() const {

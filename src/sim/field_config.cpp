@@ -143,6 +143,19 @@ void order_layout_rows(RowLayout& layout) {
       p.row = new_index[static_cast<std::size_t>(p.row)];
 }
 
+double nominal_row_spacing(const FieldConfig& config) {
+  switch (config.kind) {
+    case FieldKind::vineyard:
+      return config.vineyard.row_spacing;
+    case FieldKind::orchard:
+      return config.orchard.row_spacing;
+    case FieldKind::row_crop:
+      return config.row_crop.resolved().row_spacing;
+    default:
+      return 0.0;
+  }
+}
+
 double estimate_row_spacing(const RowLayout& layout) {
   std::vector<double> d;
   for (std::size_t k = 0; k + 1 < layout.rows.size(); ++k) {

@@ -168,4 +168,9 @@ std::optional<ZooRef> parse_zoo_ref(std::string_view text) {
   return ref;
 }
 
+std::string field_label(const std::filesystem::path& field) {
+  if (const auto ref = parse_zoo_ref(field.string())) return zoo_field(ref->index, ref->seed).name;
+  return field.stem().string();
+}
+
 }  // namespace rownav::sim

@@ -13,14 +13,6 @@ namespace {
 
 std::string text(const FieldConfig& c) { return YAML::Dump(io::encode_config(c)); }
 
-double spacing(const FieldConfig& c) {
-  switch (c.kind) {
-    case FieldKind::vineyard: return c.vineyard.row_spacing;
-    case FieldKind::orchard: return c.orchard.row_spacing;
-    default: return c.row_crop.resolved().row_spacing;
-  }
-}
-
 TEST(FieldZoo, DeterministicPerSeedAndIndex) {
   for (int i = 0; i < 10; ++i) {
     EXPECT_EQ(text(zoo_field(i, 7)), text(zoo_field(i, 7)));
@@ -41,7 +33,7 @@ TEST(FieldZoo, HundredFieldsValidAndCoverTheBands) {
     EXPECT_NO_THROW(c.validate()) << c.name;
     EXPECT_EQ(c.name.rfind("zoo_1_" + std::to_string(i) + "_", 0), 0u);
     kinds.insert(c.kind);
-    lo = std::min(lo, spacing(c)), hi = std::max(hi, spacing(c));
+    lo = std::min(lo, nominal_row_spacing(c)), hi = std::max(hi, nominal_row_spacing(c));
     steepest = std::max({steepest, std::abs(c.terrain.slope_x_deg), std::abs(c.terrain.slope_y_deg)});
     curved += c.vineyard.curvature_amplitude + c.orchard.curvature_amplitude +
                   c.row_crop.curvature_amplitude > 0.0;

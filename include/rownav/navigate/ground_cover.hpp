@@ -78,7 +78,8 @@ class GroundCoverEstimator {
   /// [m] lowest obstacle height: cover + margin, within [min_height, cap]; min_height when
   /// disabled or without cover.
   double obstacle_min_height(double min_height) const;
-  /// Forgets the history (a new corridor).
+  /// Forgets the history (NavStack does not call it: the cover is kept across corridors and
+  /// turns).
   void reset();
 
  private:

@@ -136,6 +136,10 @@ void order_layout_rows(RowLayout& layout);
 /// [m] median distance between adjacent rows of the same block (0 when no block has 2 rows).
 double estimate_row_spacing(const RowLayout& layout);
 
+/// [m] the configured row spacing of a procedural field (vineyard, orchard or row crop, the
+/// crop preset resolved); 0 for kind layout (see estimate_row_spacing).
+double nominal_row_spacing(const FieldConfig& config);
+
 /// Builds a field from an ordered layout (see order_layout_rows): vines every
 /// config.vineyard.plant_spacing unless `instance` is given (then instanced every
 /// config.layout.instance_spacing) or the layout lists explicit plants (vines and posts dressed

@@ -3,6 +3,7 @@
 /// measured"): vineyards narrow to wide with thin to solid canopy, free-standing and hedgerow
 /// orchards, row crops; spacing 0.5-7 m, gaps, slopes, curvature, weeds.
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -106,5 +107,9 @@ std::string zoo_ref_text(const ZooRef& ref);
 
 /// The reference in `text` when it is one ("zoo:" then two non-negative integers), else nullopt.
 std::optional<ZooRef> parse_zoo_ref(std::string_view text);
+
+/// A field's label in reports and tables: the zoo field's name for a reference
+/// (zoo_<seed>_<index>_<band>), else the file's stem.
+std::string field_label(const std::filesystem::path& field);
 
 }  // namespace rownav::sim
