@@ -16,12 +16,11 @@
 #include "rownav/io/progress.hpp"
 #include "rownav/io/run_metrics.hpp"
 #include "rownav/io/run_report.hpp"
-#include "rownav/io/detector_registry.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
-#include "run_mission.hpp"
 #include "rownav/sim/field_zoo.hpp"
+#include "run_mission.hpp"
 #include "setup.hpp"
 
 namespace rownav::app {

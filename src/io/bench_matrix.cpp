@@ -48,7 +48,8 @@ std::vector<std::string> with_configs(std::vector<std::string> paths, const Benc
 }
 
 std::string make_id(const std::vector<std::string>& paths, const BenchCell& c) {
-  std::string slug = sim::field_label(paths[0]) + "_" + c.detector + "_" + c.tracker + "_" + c.controller;
+  std::string slug =
+      sim::field_label(paths[0]) + "_" + c.detector + "_" + c.tracker + "_" + c.controller;
   if (!c.row_end_policy.empty()) slug += "_" + c.row_end_policy;
   slug += "_s" + std::to_string(c.seed);
   char hash[16];
