@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "rownav/io/canvas.hpp"
+#include "rownav/io/field_builder.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "picture.hpp"
 #include "rownav/core/angle.hpp"
@@ -92,7 +93,7 @@ void run_render(const RenderArgs& a) {
   io::picture_format(a.out);  // an unknown extension names the user's file, before the work
   io::OutputFile out(a.out, a.overwrite);  // refused names are said before the work
   sim::FieldConfig field_config;
-  const sim::Field field = load_field(a.field, &field_config);
+  const sim::Field field = io::load_field(a.field, &field_config);
   PictureContent pic;
   pic.robot = load_robot(a.robot);
   pic.pixels_per_metre = a.scale;

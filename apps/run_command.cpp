@@ -6,8 +6,10 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "rownav/core/angle.hpp"
 #include "rownav/io/closed_loop_runner.hpp"
 #include "rownav/io/detector_registry.hpp"
+#include "rownav/io/field_builder.hpp"
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/fault_metrics.hpp"
 #include "rownav/io/tracker_registry.hpp"
@@ -109,7 +111,7 @@ bool run_mission(const RunArgs& a) {
   // The output folder is checked first: a refused folder is said before minutes of simulation.
   io::OutputDir out(a.out, a.overwrite, "run");
   sim::FieldConfig field_config;
-  const sim::Field field = load_field(a.field, &field_config);
+  const sim::Field field = io::load_field(a.field, &field_config);
   io::ClosedLoopSetup s;
   s.field = &field;
   s.robot = load_robot(a.robot);
@@ -129,6 +131,8 @@ bool run_mission(const RunArgs& a) {
   s.detector = a.detector.empty() ? io::default_detector(s.detect_config) : a.detector;
   s.time_limit = a.time_limit;
   if (a.lead_in) s.lead_in = *a.lead_in;
+  s.start_offset = a.start_offset;
+  s.start_yaw = core::deg2rad(a.start_yaw_deg);
   if (s.sensors.faults.any()) s.settle = 3.0;  // where the robot comes to rest after a stop
   make_stack(a, s);
   std::optional<io::Progress> bar;
@@ -226,6 +230,13 @@ void add_run_command(CLI::App& app) {
                  "[m] start this far before the first corridor's entrance (default 1.5; 0 = at "
                  "the row start, as an operator places a robot at the head of a bed)")
       ->check(CLI::Range(0.0, 100.0));
+  c->add_option("--start-offset", a->start_offset,
+                "[m] start this far left (+) or right (-) of the first corridor's centre line "
+                "(default 0)")
+      ->check(CLI::Range(-10.0, 10.0));
+  c->add_option("--start-yaw", a->start_yaw_deg,
+                "[deg] start heading from the corridor direction, counter-clockwise + (default 0)")
+      ->check(CLI::Range(-90.0, 90.0));
   c->add_flag("--quiet", a->quiet, "no progress bar");
   c->callback([a] {
     if (!run_mission(*a)) {

@@ -30,6 +30,8 @@ struct RunArgs {
   std::uint64_t seed = 1;
   double time_limit = 1800.0;  ///< [s] simulated
   std::optional<double> lead_in;  ///< [m] start before the first corridor (runner default)
+  double start_offset = 0.0;      ///< [m] start left (+) of the corridor centre line
+  double start_yaw_deg = 0.0;     ///< [deg] start heading from the corridor direction (left +)
   bool quiet = false;
   bool overwrite = false;  ///< replace `out` when it is an earlier rownav output
 };

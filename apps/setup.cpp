@@ -11,33 +11,6 @@
 
 namespace rownav::app {
 
-sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out) {
-  if (const auto ref = sim::parse_zoo_ref(file.string())) {
-    const sim::FieldConfig zoo = sim::zoo_field(ref->index, ref->seed);
-    if (config_out) *config_out = zoo;
-    return io::build_field(zoo, ".");
-  }
-  const auto config = io::load_config<sim::FieldConfig>(file);
-  if (config_out) *config_out = config;
-  try {
-    return io::build_field(config, file.parent_path());
-  } catch (const io::InputError& e) {
-    // A layout / mesh file that is missing, unreadable or empty has no position of its own:
-    // point at the field YAML key naming it, so the one-line error says where to fix it.
-    if (!e.position().empty()) throw;
-    const YAML::Node layout = io::load_yaml_file(file)["layout"];
-    for (const char* key : {"file", "instance_mesh", "terrain_mesh"}) {
-      const YAML::Node node = layout ? layout[key] : YAML::Node();
-      if (!node || !node.IsScalar()) continue;
-      const std::filesystem::path p(node.Scalar());
-      if ((p.is_absolute() ? p : file.parent_path() / p).string() != e.file()) continue;
-      throw io::InputError(file.string(), io::detail::yaml_position(node),
-                           std::string("layout.") + key + ": " + e.what());
-    }
-    throw;
-  }
-}
-
 std::string check_field_arg(const std::string& value) {
   if (sim::parse_zoo_ref(value) || std::filesystem::is_regular_file(value)) return {};
   return "File does not exist: " + value + " (a field YAML, or zoo:SEED:INDEX)";

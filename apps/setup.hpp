@@ -23,9 +23,6 @@ struct Setup {
   sim::PathConfig path;
 };
 
-/// Builds the field of a field YAML (relative paths inside resolve against its folder), or of a
-/// zoo reference "zoo:SEED:INDEX" (sim/field_zoo.hpp).
-sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out = nullptr);
 /// `--field` check: an existing file or a zoo reference (empty string when valid).
 std::string check_field_arg(const std::string& value);
 sim::RobotConfig load_robot(const std::optional<std::filesystem::path>& file);

@@ -7,6 +7,7 @@
 #include "picture.hpp"
 #include "rownav/core/version.hpp"
 #include "rownav/io/bag_recording.hpp"
+#include "rownav/io/field_builder.hpp"
 #include "rownav/io/recording.hpp"
 #include "rownav/io/safe_output.hpp"
 #include "rownav/io/sim_setup.hpp"
@@ -52,7 +53,7 @@ std::vector<sim::PathPoint> scripted_path(const sim::FieldTruth& truth, const Se
 
 void run_sim(const SimArgs& a) {
   Setup s;
-  s.field = load_field(a.field, &s.field_config);
+  s.field = io::load_field(a.field, &s.field_config);
   s.robot = load_robot(a.robot);
   s.sensors = load_sensors(a.sensors, a.lidar);
   if (a.seed) s.sensors.seed = *a.seed;

@@ -226,6 +226,10 @@ core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& 
   return {p.x(), p.y(), std::atan2(e.y(), e.x())};
 }
 
+core::Pose2 perturbed_start(const core::Pose2& start, double offset, double yaw) {
+  return start * core::Pose2(0.0, offset, yaw);
+}
+
 std::unique_ptr<navigate::NavStack> make_nav_stack(const ClosedLoopSetup& setup,
                                                    const std::vector<int>& order) {
   navigate::NavStackConfig nav = setup.nav;
@@ -246,8 +250,10 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   const sim::FieldTruth truth(*setup.field);
   RunResult result;
   result.order = navigate::resolve_order(setup.mission, truth.corridor_count(setup.mission.block));
-  const core::Pose2 start = mission_start(truth, result.order, setup.mission.block,
-                                          setup.mission.first_turn, setup.lead_in);
+  const core::Pose2 start =
+      perturbed_start(mission_start(truth, result.order, setup.mission.block,
+                                    setup.mission.first_turn, setup.lead_in),
+                      setup.start_offset, setup.start_yaw);
   result.T_world_odom = start;
   const auto stack_ptr = make_nav_stack(setup, result.order);
   navigate::NavStack& stack = *stack_ptr;

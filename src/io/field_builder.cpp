@@ -3,7 +3,9 @@
 #include <optional>
 
 #include "rownav/io/layout_reader.hpp"
+#include "rownav/io/yaml_config.hpp"
 #include "rownav/io/mesh_reader.hpp"
+#include "rownav/sim/field_zoo.hpp"
 
 namespace rownav::io {
 namespace {
@@ -43,6 +45,33 @@ sim::Field build_field(const sim::FieldConfig& config, const std::filesystem::pa
   }
   return sim::dress_layout(layout, config, instance ? &*instance : nullptr,
                            terrain ? &*terrain : nullptr);
+}
+
+sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out) {
+  if (const auto ref = sim::parse_zoo_ref(file.string())) {
+    const sim::FieldConfig zoo = sim::zoo_field(ref->index, ref->seed);
+    if (config_out) *config_out = zoo;
+    return build_field(zoo, ".");
+  }
+  const auto config = load_config<sim::FieldConfig>(file);
+  if (config_out) *config_out = config;
+  try {
+    return build_field(config, file.parent_path());
+  } catch (const InputError& e) {
+    // A layout / mesh file that is missing, unreadable or empty has no position of its own:
+    // point at the field YAML key naming it, so the one-line error says where to fix it.
+    if (!e.position().empty()) throw;
+    const YAML::Node layout = load_yaml_file(file)["layout"];
+    for (const char* key : {"file", "instance_mesh", "terrain_mesh"}) {
+      const YAML::Node node = layout ? layout[key] : YAML::Node();
+      if (!node || !node.IsScalar()) continue;
+      const std::filesystem::path p(node.Scalar());
+      if ((p.is_absolute() ? p : file.parent_path() / p).string() != e.file()) continue;
+      throw InputError(file.string(), detail::yaml_position(node),
+                           std::string("layout.") + key + ": " + e.what());
+    }
+    throw;
+  }
 }
 
 }  // namespace rownav::io

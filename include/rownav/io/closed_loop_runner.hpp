@@ -49,6 +49,10 @@ struct ClosedLoopSetup {
   /// and the samples show where (the fault runs of issue 13: the clearance to a person)
   double settle = 0.0;
   double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
+  /// [m] start this far left (+) or right (-) of the first corridor's centre line (brief: the
+  /// robot off-centre; an operator rarely puts it on the centre line)
+  double start_offset = 0.0;
+  double start_yaw = 0.0;  ///< [rad] start heading from the corridor direction (left +): yawed
   /// The map stage's labels (nav.place.enabled): every sweep's points labelled from the
   /// simulator's truth by sim::TruthLabeller with `labeller`'s false-positive / negative rates
   /// (a stand-in for Emmi 2021's camera detector, Fig. 2b); false: NavStack's geometric default
@@ -134,6 +138,10 @@ struct RunResult {
 /// order lies on `first_turn`'s side. Throws std::invalid_argument for a missing corridor.
 core::Pose2 mission_start(const sim::FieldTruth& truth, const std::vector<int>& order, int block,
                           navigate::TurnSide first_turn, double lead_in);
+
+/// `start` (mission_start) moved `offset` [m] to its left and turned by `yaw` [rad]: the robot
+/// placed off the centre line and yawed.
+core::Pose2 perturbed_start(const core::Pose2& start, double offset, double yaw);
 
 /// The stack a run drives with: `setup`'s navigation config, the robot's footprint, limits and
 /// odometry model (nav_stack_robot), its detector, tracker and controller.

@@ -18,4 +18,9 @@ namespace rownav::io {
 /// @throws InputError for a missing or malformed layout / mesh file
 sim::Field build_field(const sim::FieldConfig& config, const std::filesystem::path& base_dir);
 
+/// Builds the field of a field YAML (relative paths inside resolve against its folder), or of a
+/// zoo reference "zoo:SEED:INDEX" (sim/field_zoo.hpp); `config_out`, when given, receives its
+/// config. A missing layout / mesh file is an InputError at the field YAML key naming it.
+sim::Field load_field(const std::filesystem::path& file, sim::FieldConfig* config_out = nullptr);
+
 }  // namespace rownav::io
