@@ -1,0 +1,129 @@
+#pragma once
+/// @file sim_node.hpp rownav's simulator as a ROS 1 node (issue 15): it publishes what a robot's
+/// drivers publish (/clock, the LiDAR's PointCloud2, the base's wheel odometry, the IMU, tf
+/// odom -> base_link -> LiDAR, the true pose), drives the simulated robot with `cmd_vel`, and
+/// scores the run from the ground truth (SimScore), so that rownav_node, or any other row
+/// follower, can be driven in rownav's fields and measured by rownav's truth.
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rownav/core/config_fields.hpp"
+#include "rownav/core/twist.hpp"
+#include "rownav/localize/localizer.hpp"
+#include "rownav/sim/ground_truth.hpp"
+
+namespace rownav::sim {
+class Simulator;
+struct Field;
+}  // namespace rownav::sim
+
+namespace rownav::ros_bridge {
+
+/// Private parameters of rownav_sim_node (~name). Files are those of `rownav run`.
+struct SimNodeConfig {
+  std::string field;    ///< field YAML or zoo:SEED:INDEX (required)
+  std::string robot;    ///< config/robots/*.yaml (empty: sim::RobotConfig defaults)
+  std::string sensors;  ///< config/sensors/*.yaml (empty: sim::SimConfig defaults)
+  std::string mission;  ///< config/missions/*.yaml: where the robot starts (empty: MissionPlan{})
+  /// [m] start this far before the first corridor's entrance (io::ClosedLoopSetup::lead_in)
+  double lead_in = 1.5;
+  double rate_factor = 1.0;   ///< [-] simulated seconds per wall second (0: as fast as possible)
+  double time_limit = 600.0;  ///< [s] simulated; the node then writes the result and exits
+  /// mission state topic of the row follower: "done" or "safe_stop" there end the run
+  std::string state_topic = "/rownav_node/state";
+  std::string result;  ///< JSON file the score is written to at the end (empty: none)
+  std::string odom_frame = "odom";
+  std::string base_frame = "base_link";
+  std::string lidar_frame = "lidar";
+
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("field", s.field);
+    v("robot", s.robot);
+    v("sensors", s.sensors);
+    v("mission", s.mission);
+    v("lead_in", s.lead_in);
+    v("rate_factor", s.rate_factor);
+    v("time_limit", s.time_limit);
+    v("state_topic", s.state_topic);
+    v("result", s.result);
+    v("odom_frame", s.odom_frame);
+    v("base_frame", s.base_frame);
+    v("lidar_frame", s.lidar_frame);
+  }
+  void validate() const {
+    core::check(!field.empty(), "field", "required (a field YAML or zoo:SEED:INDEX)");
+    core::check_non_negative(lead_in, "lead_in");
+    core::check_non_negative(rate_factor, "rate_factor");
+    core::check_positive(time_limit, "time_limit");
+  }
+};
+
+/// The run as the ground truth saw it: which corridors the robot drove, how well, what it hit.
+/// No ROS: fed the simulator's ground truth (20 Hz), testable alone.
+class SimScore {
+ public:
+  /// [s] a corridor counts as driven when the robot stayed in it this long
+  static constexpr double kMinCorridorTime = 2.0;
+  void add(const sim::GroundTruth& g);
+  /// Corridors driven, in order (a corridor re-entered after another counts again).
+  const std::vector<int>& corridors() const { return corridors_; }
+  double max_lateral_error() const { return max_lateral_; }  ///< [m] |true| while in corridors
+  double mean_lateral_error() const { return n_ ? sum_lateral_ / n_ : 0.0; }  ///< [m]
+  int plants_crushed() const { return crushed_; }
+  /// JSON object: corridors, lateral errors, plants crushed, sim time, the follower's state.
+  std::string json(double sim_time, const std::string& state, bool timed_out) const;
+
+ private:
+  std::vector<int> corridors_;
+  int current_ = -1;
+  double since_ = 0.0;
+  bool counted_ = false;
+  double max_lateral_ = 0.0, sum_lateral_ = 0.0;
+  long n_ = 0;
+  int crushed_ = 0;
+};
+
+/// The node. Construction reads ~params, builds the field and the simulator (throws on a bad
+/// parameter or file, one line); run() steps it until the follower's mission ends, the time
+/// limit or shutdown.
+class SimNode {
+ public:
+  SimNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~SimNode();
+  /// Returns 0 when the run ended with the follower's state "done", 1 otherwise.
+  int run();
+
+ private:
+  class Sink;
+  void on_cmd(const geometry_msgs::Twist::ConstPtr& msg);
+  void on_state(const std_msgs::String::ConstPtr& msg);
+  void publish_truth(const sim::GroundTruth& g);
+  void finish(bool timed_out);
+
+  ros::NodeHandle nh_, pnh_;
+  SimNodeConfig config_;
+  std::unique_ptr<sim::Field> field_;
+  std::unique_ptr<sim::Simulator> sim_;
+  std::unique_ptr<Sink> sink_;
+  /// the base's wheel odometry (encoders + IMU), as a robot's base driver publishes it
+  std::optional<localize::Localizer> odometry_;
+  ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_;
+  ros::Subscriber cmd_sub_, state_sub_;
+  tf2_ros::TransformBroadcaster tf_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  core::Twist2 cmd_;
+  std::string state_;
+  SimScore score_;
+  friend class Sink;
+};
+
+}  // namespace rownav::ros_bridge

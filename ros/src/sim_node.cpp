@@ -1,0 +1,215 @@
+// rownav's simulator as a ROS 1 node (rownav_ros/sim_node.hpp).
+#include "rownav_ros/sim_node.hpp"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Imu.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "rownav/io/closed_loop_runner.hpp"
+#include "rownav/io/field_builder.hpp"
+#include "rownav/io/localize_setup.hpp"
+#include "rownav/io/mission_io.hpp"
+#include "rownav/io/sim_setup.hpp"
+#include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/field_truth.hpp"
+#include "rownav/sim/simulator.hpp"
+#include "rownav_ros/conversions.hpp"
+#include "rownav_ros/ros_params.hpp"
+
+namespace rownav::ros_bridge {
+
+namespace {
+
+geometry_msgs::Quaternion yaw_quaternion(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(yaw / 2.0);
+  q.w = std::cos(yaw / 2.0);
+  return q;
+}
+
+geometry_msgs::TransformStamped transform(double stamp, const std::string& parent,
+                                          const std::string& child, const Eigen::Isometry3d& T) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp.fromSec(stamp);
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = T.translation().x();
+  t.transform.translation.y = T.translation().y();
+  t.transform.translation.z = T.translation().z();
+  const Eigen::Quaterniond q(T.linear());
+  t.transform.rotation.x = q.x(), t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z(), t.transform.rotation.w = q.w();
+  return t;
+}
+
+nav_msgs::Odometry odometry_msg(double stamp, const std::string& frame, const std::string& child,
+                                const core::Pose2& T, const core::Twist2& twist) {
+  nav_msgs::Odometry o;
+  o.header.stamp.fromSec(stamp);
+  o.header.frame_id = frame;
+  o.child_frame_id = child;
+  o.pose.pose.position.x = T.x;
+  o.pose.pose.position.y = T.y;
+  o.pose.pose.orientation = yaw_quaternion(T.theta);
+  o.twist.twist.linear.x = twist.v;
+  o.twist.twist.linear.y = twist.vy;
+  o.twist.twist.angular.z = twist.omega;
+  return o;
+}
+
+}  // namespace
+
+void SimScore::add(const sim::GroundTruth& g) {
+  crushed_ = g.plants_crushed;
+  const int corridor = g.place == sim::Place::lane ? g.corridor : -1;
+  if (corridor != current_) current_ = corridor, since_ = g.stamp, counted_ = false;
+  if (corridor < 0) return;
+  if (!counted_ && g.stamp - since_ >= kMinCorridorTime) {
+    if (corridors_.empty() || corridors_.back() != corridor) corridors_.push_back(corridor);
+    counted_ = true;
+  }
+  max_lateral_ = std::max(max_lateral_, std::abs(g.lateral_error));
+  sum_lateral_ += std::abs(g.lateral_error), ++n_;
+}
+
+std::string SimScore::json(double sim_time, const std::string& state, bool timed_out) const {
+  std::ostringstream o;
+  o << "{\"state\": \"" << state << "\", \"timed_out\": " << (timed_out ? "true" : "false")
+    << ", \"sim_time\": " << sim_time << ", \"corridors\": [";
+  for (std::size_t i = 0; i < corridors_.size(); ++i) o << (i ? ", " : "") << corridors_[i];
+  o << "], \"in_corridor_lateral_error_max\": " << max_lateral_
+    << ", \"in_corridor_lateral_error_mean\": " << mean_lateral_error()
+    << ", \"plants_crushed\": " << crushed_ << "}\n";
+  return o.str();
+}
+
+/// Publishes the simulator's samples as a robot's drivers would.
+class SimNode::Sink : public sim::SimSink {
+ public:
+  explicit Sink(SimNode& n) : n_(n) {}
+  void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>&) override {
+    core::PointCloud cloud = c;
+    cloud.frame_id = n_.config_.lidar_frame;
+    n_.cloud_pub_.publish(to_cloud_msg(cloud));
+  }
+  void on_encoders(const core::WheelEncoderSample& s) override {
+    n_.odometry_->add_encoders(s);
+    const auto e = n_.odometry_->latest();
+    if (!e.valid) return;
+    const auto& c = n_.config_;
+    n_.odom_pub_.publish(odometry_msg(e.stamp, c.odom_frame, c.base_frame, e.T_odom_base, e.twist));
+    n_.tf_.sendTransform(transform(e.stamp, c.odom_frame, c.base_frame,
+                                   e.T_odom_base.to_isometry()));
+  }
+  void on_imu(const core::ImuSample& s) override {
+    n_.odometry_->add_imu(s);
+    sensor_msgs::Imu m;
+    m.header.stamp.fromSec(s.stamp);
+    m.header.frame_id = n_.config_.base_frame;
+    m.orientation_covariance[0] = -1.0;  // no orientation (REP 145)
+    m.angular_velocity.x = s.angular_velocity.x(), m.angular_velocity.y = s.angular_velocity.y();
+    m.angular_velocity.z = s.angular_velocity.z();
+    m.linear_acceleration.x = s.linear_acceleration.x();
+    m.linear_acceleration.y = s.linear_acceleration.y();
+    m.linear_acceleration.z = s.linear_acceleration.z();
+    n_.imu_pub_.publish(m);
+  }
+  void on_ground_truth(const sim::GroundTruth& g) override {
+    n_.score_.add(g);
+    n_.publish_truth(g);
+  }
+
+ private:
+  SimNode& n_;
+};
+
+SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
+  read_config(pnh_, "", config_);
+  const auto& c = config_;
+  field_ = std::make_unique<sim::Field>(io::load_field(c.field));
+  const auto robot = c.robot.empty() ? sim::RobotConfig{}
+                                     : io::load_config<sim::RobotConfig>(c.robot);
+  const auto sensors = c.sensors.empty() ? sim::SimConfig{} : io::load_sim_config(c.sensors);
+  const auto mission = c.mission.empty() ? navigate::MissionPlan{} : io::load_mission(c.mission);
+  const sim::FieldTruth truth(*field_);
+  const auto order = navigate::resolve_order(mission, truth.corridor_count(mission.block));
+  const core::Pose2 start =
+      io::mission_start(truth, order, mission.block, mission.first_turn, c.lead_in);
+  sim_ = std::make_unique<sim::Simulator>(*field_, robot, sensors, start);
+  odometry_.emplace(io::localizer_config_for(robot, sensors));
+  sink_ = std::make_unique<Sink>(*this);
+  ros::param::set("/use_sim_time", true);  // the nodes started after this one follow /clock
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud2>("cloud", 2);
+  odom_pub_ = nh_.advertise<nav_msgs::Odometry>("odom", 50);
+  imu_pub_ = nh_.advertise<sensor_msgs::Imu>("imu", 200);
+  truth_pub_ = pnh_.advertise<nav_msgs::Odometry>("ground_truth", 20);
+  cmd_sub_ = nh_.subscribe("cmd_vel", 10, &SimNode::on_cmd, this);
+  state_sub_ = nh_.subscribe(c.state_topic, 10, &SimNode::on_state, this);
+  static_tf_.sendTransform(
+      transform(sim_->time(), c.base_frame, c.lidar_frame, sensors.lidar.T_base_lidar()));
+  ROS_INFO("rownav_sim_node: field %s, %zu corridors planned, start (%.2f, %.2f, %.1f deg)",
+           c.field.c_str(), order.size(), start.x, start.y, start.theta * 180.0 / M_PI);
+}
+
+SimNode::~SimNode() = default;
+
+void SimNode::on_cmd(const geometry_msgs::Twist::ConstPtr& msg) {
+  cmd_ = {};
+  cmd_.v = msg->linear.x, cmd_.vy = msg->linear.y, cmd_.omega = msg->angular.z;
+  if (!std::isfinite(cmd_.v) || !std::isfinite(cmd_.omega)) cmd_ = {};
+}
+
+void SimNode::on_state(const std_msgs::String::ConstPtr& msg) { state_ = msg->data; }
+
+void SimNode::publish_truth(const sim::GroundTruth& g) {
+  truth_pub_.publish(odometry_msg(g.stamp, "world", config_.base_frame, g.T_world_base, g.twist));
+}
+
+void SimNode::finish(bool timed_out) {
+  const std::string text = score_.json(sim_->time(), state_, timed_out);
+  ROS_INFO("rownav_sim_node: %s", text.c_str());
+  if (config_.result.empty()) return;
+  std::ofstream f(config_.result);
+  f << text;
+  if (!f) ROS_ERROR("rownav_sim_node: cannot write %s", config_.result.c_str());
+}
+
+int SimNode::run() {
+  rosgraph_msgs::Clock clock;
+  clock.clock.fromSec(sim_->time());
+  // Wait for the follower: its cloud subscription and its cmd_vel (wall time; /clock stands).
+  while (ros::ok() && (cloud_pub_.getNumSubscribers() == 0 || cmd_sub_.getNumPublishers() == 0)) {
+    clock_pub_.publish(clock);
+    ROS_INFO_THROTTLE(5.0, "rownav_sim_node: waiting for a subscriber of cloud and cmd_vel");
+    ros::spinOnce();
+    ros::WallDuration(0.05).sleep();
+  }
+  const double t0 = sim_->time();
+  const ros::WallTime wall0 = ros::WallTime::now();
+  while (ros::ok()) {
+    clock.clock.fromSec(sim_->time() + sim_->dt());
+    clock_pub_.publish(clock);  // before the step's samples: none is stamped in the future
+    sim_->step(cmd_, *sink_);
+    ros::spinOnce();
+    if (state_ == "done" || state_ == "safe_stop") break;
+    if (sim_->time() - t0 >= config_.time_limit) {
+      finish(true);
+      return 1;
+    }
+    if (config_.rate_factor > 0.0) {
+      const ros::WallTime due = wall0 + ros::WallDuration((sim_->time() - t0) / config_.rate_factor);
+      const ros::WallTime now = ros::WallTime::now();
+      if (due > now) (due - now).sleep();
+    }
+  }
+  finish(false);
+  return state_ == "done" ? 0 : 1;
+}
+
+}  // namespace rownav::ros_bridge
