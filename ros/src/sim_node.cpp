@@ -6,6 +6,7 @@
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Imu.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -77,6 +78,14 @@ void SimScore::add(const sim::GroundTruth& g) {
   sum_lateral_ += std::abs(g.lateral_error), ++n_;
 }
 
+std::optional<double> SimScore::latency(double q) const {
+  if (latencies_.empty()) return std::nullopt;
+  std::vector<double> v = latencies_;
+  const auto k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * double(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
 std::string SimScore::json(double sim_time, const std::string& state, bool timed_out) const {
   std::ostringstream o;
   o << "{\"state\": \"" << state << "\", \"timed_out\": " << (timed_out ? "true" : "false")
@@ -84,7 +93,11 @@ std::string SimScore::json(double sim_time, const std::string& state, bool timed
   for (std::size_t i = 0; i < corridors_.size(); ++i) o << (i ? ", " : "") << corridors_[i];
   o << "], \"in_corridor_lateral_error_max\": " << max_lateral_
     << ", \"in_corridor_lateral_error_mean\": " << mean_lateral_error()
-    << ", \"plants_crushed\": " << crushed_ << "}\n";
+    << ", \"plants_crushed\": " << crushed_ << ", \"answered_frames\": " << latencies_.size();
+  // The follower's latency, message in to answer out, transport both ways included [ms].
+  if (const auto m = latency(0.5)) o << ", \"latency_median_ms\": " << 1e3 * *m;
+  if (const auto p = latency(0.99)) o << ", \"latency_p99_ms\": " << 1e3 * *p;
+  o << "}\n";
   return o.str();
 }
 
@@ -95,7 +108,9 @@ class SimNode::Sink : public sim::SimSink {
   void on_cloud(const core::PointCloud& c, const std::vector<sim::SurfaceClass>&) override {
     core::PointCloud cloud = c;
     cloud.frame_id = n_.config_.lidar_frame;
-    n_.cloud_pub_.publish(to_cloud_msg(cloud));
+    const auto msg = to_cloud_msg(cloud);
+    n_.sent_cloud(msg.header.stamp);
+    n_.cloud_pub_.publish(msg);
   }
   void on_encoders(const core::WheelEncoderSample& s) override {
     n_.odometry_->add_encoders(s);
@@ -120,7 +135,10 @@ class SimNode::Sink : public sim::SimSink {
     n_.imu_pub_.publish(m);
   }
   void on_ground_truth(const sim::GroundTruth& g) override {
-    n_.score_.add(g);
+    {
+      const std::lock_guard<std::mutex> lock(n_.mutex_);
+      n_.score_.add(g);
+    }
     n_.publish_truth(g);
   }
 
@@ -149,20 +167,47 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   odom_pub_ = nh_.advertise<nav_msgs::Odometry>("odom", 50);
   imu_pub_ = nh_.advertise<sensor_msgs::Imu>("imu", 200);
   truth_pub_ = pnh_.advertise<nav_msgs::Odometry>("ground_truth", 20);
-  cmd_sub_ = nh_.subscribe("cmd_vel", 10, &SimNode::on_cmd, this);
   state_sub_ = nh_.subscribe(c.state_topic, 10, &SimNode::on_state, this);
+  ros::NodeHandle answers(nh_);
+  answers.setCallbackQueue(&answers_);
+  cmd_sub_ = answers.subscribe("cmd_vel", 10, &SimNode::on_cmd, this);
+  tracking_sub_ = answers.subscribe(c.tracking_topic, 10, &SimNode::on_tracking, this);
+  answer_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &answers_);
+  answer_spinner_->start();
   static_tf_.sendTransform(
       transform(sim_->time(), c.base_frame, c.lidar_frame, sensors.lidar.T_base_lidar()));
   ROS_INFO("rownav_sim_node: field %s, %zu corridors planned, start (%.2f, %.2f, %.1f deg)",
            c.field.c_str(), order.size(), start.x, start.y, start.theta * 180.0 / M_PI);
 }
 
-SimNode::~SimNode() = default;
+SimNode::~SimNode() {
+  // The subscriptions on answers_ go before it does (members die in reverse order).
+  if (answer_spinner_) answer_spinner_->stop();
+  cmd_sub_.shutdown();
+  tracking_sub_.shutdown();
+}
 
 void SimNode::on_cmd(const geometry_msgs::Twist::ConstPtr& msg) {
-  cmd_ = {};
-  cmd_.v = msg->linear.x, cmd_.vy = msg->linear.y, cmd_.omega = msg->angular.z;
-  if (!std::isfinite(cmd_.v) || !std::isfinite(cmd_.omega)) cmd_ = {};
+  core::Twist2 c;
+  c.v = msg->linear.x, c.vy = msg->linear.y, c.omega = msg->angular.z;
+  if (!std::isfinite(c.v) || !std::isfinite(c.vy) || !std::isfinite(c.omega)) c = {};
+  const std::lock_guard<std::mutex> lock(mutex_);
+  cmd_ = c;
+}
+
+void SimNode::sent_cloud(const ros::Time& stamp) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  sent_[stamp.toNSec()] = ros::WallTime::now();
+  while (sent_.size() > kMaxPendingFrames) sent_.erase(sent_.begin());  // never answered
+}
+
+void SimNode::on_tracking(const geometry_msgs::Vector3Stamped::ConstPtr& msg) {
+  const ros::WallTime now = ros::WallTime::now();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = sent_.find(msg->header.stamp.toNSec());
+  if (it == sent_.end()) return;
+  score_.add_latency((now - it->second).toSec());
+  sent_.erase(sent_.begin(), std::next(it));
 }
 
 void SimNode::on_state(const std_msgs::String::ConstPtr& msg) { state_ = msg->data; }
@@ -172,6 +217,7 @@ void SimNode::publish_truth(const sim::GroundTruth& g) {
 }
 
 void SimNode::finish(bool timed_out) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   const std::string text = score_.json(sim_->time(), state_, timed_out);
   ROS_INFO("rownav_sim_node: %s", text.c_str());
   if (config_.result.empty()) return;
@@ -195,7 +241,12 @@ int SimNode::run() {
   while (ros::ok()) {
     clock.clock.fromSec(sim_->time() + sim_->dt());
     clock_pub_.publish(clock);  // before the step's samples: none is stamped in the future
-    sim_->step(cmd_, *sink_);
+    core::Twist2 cmd;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      cmd = cmd_;
+    }
+    sim_->step(cmd, *sink_);
     ros::spinOnce();
     if (state_ == "done" || state_ == "safe_stop") break;
     if (sim_->time() - t0 >= config_.time_limit) {

@@ -65,6 +65,9 @@ TEST_F(NodeAgainstAMaster, TheSimNodeDrivesRownavNodeThroughTwoCorridorsLikeRown
   // 0.038 / 0.067 / 0.091 m at 2x / 1x / 3x real time; the transport's timing varies run to run.
   EXPECT_LT(json_number(ros, "in_corridor_lateral_error_max"), 0.15);
   EXPECT_LT(json_number(ros, "in_corridor_lateral_error_mean"), 0.03);
+  // Every sweep of the ~65 s answered on ~tracking (10 Hz; the sim node's latency account).
+  EXPECT_GT(json_number(ros, "answered_frames"), 0.9 * 10.0 * json_number(ros, "sim_time"));
+  EXPECT_GT(json_number(ros, "latency_median_ms"), 0.0);
 
   const auto run = rownav::test::rownav(dir, "run --field " + field + " --robot " + robot +
                                                   " --sensor " + kConfig +

@@ -5,12 +5,17 @@
 /// scores the run from the ground truth (SimScore), so that rownav_node, or any other row
 /// follower, can be driven in rownav's fields and measured by rownav's truth.
 #include <geometry_msgs/Twist.h>
+#include <geometry_msgs/Vector3Stamped.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <cstdint>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +44,9 @@ struct SimNodeConfig {
   double time_limit = 600.0;  ///< [s] simulated; the node then writes the result and exits
   /// mission state topic of the row follower: "done" or "safe_stop" there end the run
   std::string state_topic = "/rownav_node/state";
+  /// the follower's per-frame output stamped with the sweep's stamp (rownav_node: ~tracking):
+  /// the wall time from a cloud's publication to it is the follower's latency
+  std::string tracking_topic = "/rownav_node/tracking";
   std::string result;  ///< JSON file the score is written to at the end (empty: none)
   std::string odom_frame = "odom";
   std::string base_frame = "base_link";
@@ -54,6 +62,7 @@ struct SimNodeConfig {
     v("rate_factor", s.rate_factor);
     v("time_limit", s.time_limit);
     v("state_topic", s.state_topic);
+    v("tracking_topic", s.tracking_topic);
     v("result", s.result);
     v("odom_frame", s.odom_frame);
     v("base_frame", s.base_frame);
@@ -79,6 +88,10 @@ class SimScore {
   double max_lateral_error() const { return max_lateral_; }  ///< [m] |true| while in corridors
   double mean_lateral_error() const { return n_ ? sum_lateral_ / n_ : 0.0; }  ///< [m]
   int plants_crushed() const { return crushed_; }
+  /// [s] wall time from a sweep's publication to the follower's answer to it.
+  void add_latency(double seconds) { latencies_.push_back(seconds); }
+  /// [s] the q-quantile (0..1, nearest rank) of the latencies; nullopt without any.
+  std::optional<double> latency(double q) const;
   /// JSON object: corridors, lateral errors, plants crushed, sim time, the follower's state.
   std::string json(double sim_time, const std::string& state, bool timed_out) const;
 
@@ -90,6 +103,7 @@ class SimScore {
   double max_lateral_ = 0.0, sum_lateral_ = 0.0;
   long n_ = 0;
   int crushed_ = 0;
+  std::vector<double> latencies_;
 };
 
 /// The node. Construction reads ~params, builds the field and the simulator (throws on a bad
@@ -106,6 +120,8 @@ class SimNode {
   class Sink;
   void on_cmd(const geometry_msgs::Twist::ConstPtr& msg);
   void on_state(const std_msgs::String::ConstPtr& msg);
+  void on_tracking(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
+  void sent_cloud(const ros::Time& stamp);
   void publish_truth(const sim::GroundTruth& g);
   void finish(bool timed_out);
 
@@ -117,7 +133,13 @@ class SimNode {
   /// the base's wheel odometry (encoders + IMU), as a robot's base driver publishes it
   std::optional<localize::Localizer> odometry_;
   ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_;
-  ros::Subscriber cmd_sub_, state_sub_;
+  ros::Subscriber cmd_sub_, state_sub_, tracking_sub_;
+  /// cmd_vel and the tracking output are taken on their own thread, when they arrive
+  ros::CallbackQueue answers_;
+  std::unique_ptr<ros::AsyncSpinner> answer_spinner_;
+  std::mutex mutex_;  ///< guards cmd_, sent_, score_'s latencies
+  std::map<std::uint64_t, ros::WallTime> sent_;  ///< sweep stamp [ns] -> wall time published
+  static constexpr std::size_t kMaxPendingFrames = 50;  ///< sweeps kept waiting for an answer
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   core::Twist2 cmd_;
