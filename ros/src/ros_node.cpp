@@ -7,6 +7,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav_ros/ros_params.hpp"
+#include "rownav_ros/row_markers.hpp"
 
 namespace rownav::ros_bridge {
 
@@ -45,6 +46,7 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   tracking_pub_ = pnh_.advertise<geometry_msgs::Vector3Stamped>("tracking", 10);
   state_pub_ = pnh_.advertise<std_msgs::String>("state", 1, /*latch=*/true);
   rows_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("rows", 10);
+  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
   if (c.input == "cloud")
     frame_sub_ = nh_.subscribe("cloud", 2, &RosNode::on_cloud, this);
   else
@@ -200,6 +202,8 @@ void RosNode::publish_frame(const FrameResult& r, const ros::Time& stamp) {
     rows.poses.push_back(p);
   }
   rows_pub_.publish(rows);
+  if (markers_pub_.getNumSubscribers() > 0)
+    markers_pub_.publish(row_markers(r.tracking, t.header.frame_id, stamp));
 }
 
 }  // namespace rownav::ros_bridge

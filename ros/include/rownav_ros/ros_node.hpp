@@ -10,6 +10,7 @@
 #include <std_msgs/String.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <memory>
 #include <string>
@@ -53,7 +54,7 @@ class RosNode {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   ros::Subscriber frame_sub_, odom_sub_, imu_sub_, enable_sub_;
-  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_, diag_pub_;
+  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_, markers_pub_, diag_pub_;
   ros::Timer watchdog_timer_;
   int ticks_ = 0;
 };
