@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "common/nav_doubles.hpp"
 #include "rownav/track/raw_corridor.hpp"
 #include "rownav/io/field_builder.hpp"
@@ -53,6 +55,21 @@ TEST(ClosedLoopRunner, ServesThreeCorridorsOfASmallVineyard) {
   ASSERT_TRUE(s.path_length_ratio_mean.has_value());
   EXPECT_GE(*s.path_length_ratio_mean, 1.0);
   EXPECT_LT(*s.path_length_ratio_mean, 1.05);
+}
+
+TEST(PerturbedStart, MovesToTheStartsLeftAndTurnsCounterClockwise) {
+  const core::Pose2 p = perturbed_start({1.0, 2.0, 0.0}, 0.3, 0.1);
+  EXPECT_NEAR(p.x, 1.0, 1e-12);
+  EXPECT_NEAR(p.y, 2.3, 1e-12);
+  EXPECT_NEAR(p.theta, 0.1, 1e-12);
+}
+
+TEST(PerturbedStart, OffsetIsAcrossTheStartHeading) {
+  // Facing +y, the start's left is -x.
+  const core::Pose2 p = perturbed_start({0.0, 0.0, std::numbers::pi / 2.0}, -0.2, -0.3);
+  EXPECT_NEAR(p.x, 0.2, 1e-12);
+  EXPECT_NEAR(p.y, 0.0, 1e-12);
+  EXPECT_NEAR(p.theta, std::numbers::pi / 2.0 - 0.3, 1e-12);
 }
 
 }  // namespace
