@@ -243,6 +243,11 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   out.control = c;
   const auto& centre = ends_.centre();
   at_rows_ = at_rows_ || reached_rows(in.tracking, config_.arm_reach);
+  // Before the rows (a start in the headland) the end-of-row box sees the rows' first plants
+  // only: that is no row end, and the detector latches what it declares, so its evidence starts
+  // at the rows (issue 10: leek fields of the zoo latched a row end 1.5 m before the first plant
+  // and drove out by odometry at once).
+  if (!at_rows_) out.reset_end_of_row = true;
   if (in.end_of_row.end_detected && centre && at_rows_) {
     state_ = NavState::exiting;
     exit_distance_ = exit_distance(in);

@@ -44,6 +44,33 @@ TEST(Navigator, ObstacleInsideStopDistanceStops) {
   EXPECT_EQ(out.stop_reason, StopReason::obstacle);
 }
 
+TEST(Navigator, ARowEndSeenBeforeTheRowsBeginIsForgottenNotFollowed) {
+  // Started 1.5 m before the rows: the followed rows begin 1.5 m ahead (> arm_reach 1 m), and
+  // the end-of-row box, seeing only their first plants, declares an end.
+  Fixture f;
+  auto with_rows = [](double t, double x_min) {
+    NavInput in = frame(t, true);
+    in.tracking.rows.resize(2);
+    for (auto& r : in.tracking.rows) r.x_min = x_min, r.x_max = x_min + 2.0;
+    in.tracking.right = 0, in.tracking.left = 1;
+    return in;
+  };
+  NavInput in = with_rows(0.0, 1.5);
+  in.end_of_row.end_detected = true;
+  in.end_of_row.distance_to_end = 3.0;
+  NavOutput out = f.nav.step(in);
+  EXPECT_EQ(out.state, NavState::in_row);
+  EXPECT_TRUE(out.reset_end_of_row);  // the detector starts again at the rows
+  // At the rows (they begin 0.5 m ahead): the detector's fresh answer decides.
+  out = f.nav.step(with_rows(0.5, 0.5));
+  EXPECT_EQ(out.state, NavState::in_row);
+  EXPECT_FALSE(out.reset_end_of_row);
+  in = with_rows(0.6, 0.4);
+  in.end_of_row.end_detected = true;
+  in.end_of_row.distance_to_end = 1.0;
+  EXPECT_EQ(f.nav.step(in).state, NavState::exiting);
+}
+
 TEST(Navigator, EndOfRowLeadsToExitingThenTurning) {
   Fixture f;
   NavInput in = frame(0.0, true);
