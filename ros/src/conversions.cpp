@@ -235,4 +235,55 @@ geometry_msgs::Twist to_twist_msg(const core::Twist2& cmd) {
   return t;
 }
 
+geometry_msgs::Quaternion yaw_quaternion(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(yaw / 2.0);
+  q.w = std::cos(yaw / 2.0);
+  return q;
+}
+
+nav_msgs::Odometry to_odom_msg(const OdomSample& s) {
+  nav_msgs::Odometry o;
+  o.header.stamp.fromSec(s.stamp);
+  o.header.frame_id = s.frame_id;
+  o.child_frame_id = s.child_frame_id;
+  o.pose.pose.position.x = s.T_odom_base.x;
+  o.pose.pose.position.y = s.T_odom_base.y;
+  o.pose.pose.orientation = yaw_quaternion(s.T_odom_base.theta);
+  o.twist.twist.linear.x = s.twist.v;
+  o.twist.twist.linear.y = s.twist.vy;
+  o.twist.twist.angular.z = s.twist.omega;
+  return o;
+}
+
+sensor_msgs::Imu to_imu_msg(const core::ImuSample& s, const std::string& frame_id) {
+  sensor_msgs::Imu m;
+  m.header.stamp.fromSec(s.stamp);
+  m.header.frame_id = frame_id;
+  m.orientation_covariance[0] = -1.0;  // no orientation (REP 145)
+  m.angular_velocity.x = s.angular_velocity.x();
+  m.angular_velocity.y = s.angular_velocity.y();
+  m.angular_velocity.z = s.angular_velocity.z();
+  m.linear_acceleration.x = s.linear_acceleration.x();
+  m.linear_acceleration.y = s.linear_acceleration.y();
+  m.linear_acceleration.z = s.linear_acceleration.z();
+  return m;
+}
+
+geometry_msgs::TransformStamped to_transform_msg(double stamp, const std::string& parent,
+                                                 const std::string& child,
+                                                 const Eigen::Isometry3d& T_parent_child) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp.fromSec(stamp);
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  const Eigen::Vector3d& p = T_parent_child.translation();
+  t.transform.translation.x = p.x(), t.transform.translation.y = p.y();
+  t.transform.translation.z = p.z();
+  const Eigen::Quaterniond q(T_parent_child.linear());
+  t.transform.rotation.x = q.x(), t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z(), t.transform.rotation.w = q.w();
+  return t;
+}
+
 }  // namespace rownav::ros_bridge

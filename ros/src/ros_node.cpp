@@ -197,8 +197,7 @@ void RosNode::publish_frame(const FrameResult& r, const ros::Time& stamp) {
   for (const auto& row : r.tracking.rows) {
     geometry_msgs::Pose p;
     p.position.y = row.offset;
-    p.orientation.z = std::sin(row.heading / 2.0);
-    p.orientation.w = std::cos(row.heading / 2.0);
+    p.orientation = yaw_quaternion(row.heading);
     rows.poses.push_back(p);
   }
   rows_pub_.publish(rows);

@@ -1,7 +1,6 @@
 // rownav's simulator as a ROS 1 node (rownav_ros/sim_node.hpp).
 #include "rownav_ros/sim_node.hpp"
 
-#include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Imu.h>
@@ -15,6 +14,7 @@
 #include "rownav/io/field_builder.hpp"
 #include "rownav/io/localize_setup.hpp"
 #include "rownav/io/mission_io.hpp"
+#include "rownav/io/run_metrics.hpp"
 #include "rownav/io/sim_setup.hpp"
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/sim/field_truth.hpp"
@@ -23,47 +23,6 @@
 #include "rownav_ros/ros_params.hpp"
 
 namespace rownav::ros_bridge {
-
-namespace {
-
-geometry_msgs::Quaternion yaw_quaternion(double yaw) {
-  geometry_msgs::Quaternion q;
-  q.z = std::sin(yaw / 2.0);
-  q.w = std::cos(yaw / 2.0);
-  return q;
-}
-
-geometry_msgs::TransformStamped transform(double stamp, const std::string& parent,
-                                          const std::string& child, const Eigen::Isometry3d& T) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp.fromSec(stamp);
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  t.transform.translation.x = T.translation().x();
-  t.transform.translation.y = T.translation().y();
-  t.transform.translation.z = T.translation().z();
-  const Eigen::Quaterniond q(T.linear());
-  t.transform.rotation.x = q.x(), t.transform.rotation.y = q.y();
-  t.transform.rotation.z = q.z(), t.transform.rotation.w = q.w();
-  return t;
-}
-
-nav_msgs::Odometry odometry_msg(double stamp, const std::string& frame, const std::string& child,
-                                const core::Pose2& T, const core::Twist2& twist) {
-  nav_msgs::Odometry o;
-  o.header.stamp.fromSec(stamp);
-  o.header.frame_id = frame;
-  o.child_frame_id = child;
-  o.pose.pose.position.x = T.x;
-  o.pose.pose.position.y = T.y;
-  o.pose.pose.orientation = yaw_quaternion(T.theta);
-  o.twist.twist.linear.x = twist.v;
-  o.twist.twist.linear.y = twist.vy;
-  o.twist.twist.angular.z = twist.omega;
-  return o;
-}
-
-}  // namespace
 
 void SimScore::add(const sim::GroundTruth& g) {
   crushed_ = g.plants_crushed;
@@ -78,13 +37,7 @@ void SimScore::add(const sim::GroundTruth& g) {
   sum_lateral_ += std::abs(g.lateral_error), ++n_;
 }
 
-std::optional<double> SimScore::latency(double q) const {
-  if (latencies_.empty()) return std::nullopt;
-  std::vector<double> v = latencies_;
-  const auto k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * double(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
+std::optional<double> SimScore::latency(double q) const { return io::percentile(latencies_, q); }
 
 std::string SimScore::json(double sim_time, const std::string& state, bool timed_out) const {
   std::ostringstream o;
@@ -117,22 +70,14 @@ class SimNode::Sink : public sim::SimSink {
     const auto e = n_.odometry_->latest();
     if (!e.valid) return;
     const auto& c = n_.config_;
-    n_.odom_pub_.publish(odometry_msg(e.stamp, c.odom_frame, c.base_frame, e.T_odom_base, e.twist));
-    n_.tf_.sendTransform(transform(e.stamp, c.odom_frame, c.base_frame,
-                                   e.T_odom_base.to_isometry()));
+    n_.odom_pub_.publish(
+        to_odom_msg({e.stamp, e.T_odom_base, e.twist, c.odom_frame, c.base_frame}));
+    n_.tf_.sendTransform(
+        to_transform_msg(e.stamp, c.odom_frame, c.base_frame, e.T_odom_base.to_isometry()));
   }
   void on_imu(const core::ImuSample& s) override {
     n_.odometry_->add_imu(s);
-    sensor_msgs::Imu m;
-    m.header.stamp.fromSec(s.stamp);
-    m.header.frame_id = n_.config_.base_frame;
-    m.orientation_covariance[0] = -1.0;  // no orientation (REP 145)
-    m.angular_velocity.x = s.angular_velocity.x(), m.angular_velocity.y = s.angular_velocity.y();
-    m.angular_velocity.z = s.angular_velocity.z();
-    m.linear_acceleration.x = s.linear_acceleration.x();
-    m.linear_acceleration.y = s.linear_acceleration.y();
-    m.linear_acceleration.z = s.linear_acceleration.z();
-    n_.imu_pub_.publish(m);
+    n_.imu_pub_.publish(to_imu_msg(s, n_.config_.base_frame));
   }
   void on_ground_truth(const sim::GroundTruth& g) override {
     {
@@ -175,7 +120,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   answer_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &answers_);
   answer_spinner_->start();
   static_tf_.sendTransform(
-      transform(sim_->time(), c.base_frame, c.lidar_frame, sensors.lidar.T_base_lidar()));
+      to_transform_msg(sim_->time(), c.base_frame, c.lidar_frame, sensors.lidar.T_base_lidar()));
   ROS_INFO("rownav_sim_node: field %s, %zu corridors planned, start (%.2f, %.2f, %.1f deg)",
            c.field.c_str(), order.size(), start.x, start.y, start.theta * 180.0 / M_PI);
 }
@@ -213,7 +158,7 @@ void SimNode::on_tracking(const geometry_msgs::Vector3Stamped::ConstPtr& msg) {
 void SimNode::on_state(const std_msgs::String::ConstPtr& msg) { state_ = msg->data; }
 
 void SimNode::publish_truth(const sim::GroundTruth& g) {
-  truth_pub_.publish(odometry_msg(g.stamp, "world", config_.base_frame, g.T_world_base, g.twist));
+  truth_pub_.publish(to_odom_msg({g.stamp, g.T_world_base, g.twist, "world", config_.base_frame}));
 }
 
 void SimNode::finish(bool timed_out) {

@@ -7,6 +7,14 @@
 
 namespace rownav::io {
 
+std::optional<double> percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nullopt;
+  std::sort(v.begin(), v.end());
+  const auto i =
+      static_cast<std::size_t>(std::clamp(q * (v.size() - 1) + 0.5, 0.0, v.size() - 1.0));
+  return v[i];
+}
+
 namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
@@ -34,14 +42,6 @@ struct Stats {
     return std::sqrt(std::max(0.0, sum_sq / n - m * m));
   }
 };
-
-std::optional<double> percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nullopt;
-  std::sort(v.begin(), v.end());
-  const auto i =
-      static_cast<std::size_t>(std::clamp(q * (v.size() - 1) + 0.5, 0.0, v.size() - 1.0));
-  return v[i];
-}
 
 /// Consecutive in-row lane samples of one true corridor.
 std::vector<std::pair<int, std::vector<const RunSample*>>> corridor_runs(const RunResult& run) {

@@ -195,6 +195,46 @@ TEST(RosConversions, ImuOdometryTwist) {
   EXPECT_DOUBLE_EQ(rb::yaw_of(geometry_msgs::Quaternion()), 0.0);  // zero quaternion
 }
 
+TEST(RosConversions, OdometryImuAndTransformMessagesRoundTrip) {
+  rb::OdomSample o;
+  o.stamp = 12.5;
+  o.T_odom_base = rownav::core::Pose2(1.0, -2.0, 2.9);
+  o.twist.v = 0.7, o.twist.vy = 0.01, o.twist.omega = -0.2;
+  o.frame_id = "odom", o.child_frame_id = "base_link";
+  const auto back = rb::to_odom(rb::to_odom_msg(o));
+  EXPECT_DOUBLE_EQ(back.stamp, 12.5);
+  EXPECT_DOUBLE_EQ(back.T_odom_base.x, 1.0);
+  EXPECT_DOUBLE_EQ(back.T_odom_base.y, -2.0);
+  EXPECT_NEAR(back.T_odom_base.theta, 2.9, 1e-12);
+  EXPECT_DOUBLE_EQ(back.twist.v, 0.7);
+  EXPECT_DOUBLE_EQ(back.twist.vy, 0.01);
+  EXPECT_DOUBLE_EQ(back.twist.omega, -0.2);
+  EXPECT_EQ(back.frame_id, "odom");
+  EXPECT_EQ(back.child_frame_id, "base_link");
+  EXPECT_NEAR(rb::yaw_of(rb::yaw_quaternion(-3.0)), -3.0, 1e-12);
+
+  rownav::core::ImuSample i;
+  i.stamp = 3.0;
+  i.angular_velocity = {0.1, -0.2, 0.3};
+  i.linear_acceleration = {0.5, 0.0, 9.81};
+  const auto m = rb::to_imu_msg(i, "base_link");
+  EXPECT_EQ(m.header.frame_id, "base_link");
+  EXPECT_EQ(m.orientation_covariance[0], -1.0);  // no orientation
+  const auto ib = rb::to_imu(m);
+  EXPECT_DOUBLE_EQ(ib.stamp, 3.0);
+  EXPECT_TRUE(ib.angular_velocity.isApprox(i.angular_velocity));
+  EXPECT_TRUE(ib.linear_acceleration.isApprox(i.linear_acceleration));
+
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 0.1, 1.0).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(0.3, -0.1, 0.75);
+  const auto t = rb::to_transform_msg(4.0, "base_link", "lidar", T);
+  EXPECT_EQ(t.header.frame_id, "base_link");
+  EXPECT_EQ(t.child_frame_id, "lidar");
+  EXPECT_DOUBLE_EQ(t.header.stamp.toSec(), 4.0);
+  EXPECT_TRUE(rb::to_isometry(t.transform).isApprox(T, 1e-12));
+}
+
 TEST(RosParams, AListGivenAsTextOnTheCommandLineIsAList) {
   using rownav::ros_bridge::detail::numbers_from_text;
   // `rosrun rownav rownav_node _lidar_mount:="[0.3,0,0.8,0,0,0]"` stores the text.

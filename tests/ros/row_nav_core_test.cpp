@@ -41,15 +41,7 @@ struct Scene {
 };
 
 nav_msgs::Odometry odom_msg(double t, const Pose2& p) {
-  nav_msgs::Odometry o;
-  o.header.stamp.fromSec(t);
-  o.header.frame_id = "odom";
-  o.child_frame_id = "base_link";
-  o.pose.pose.position.x = p.x;
-  o.pose.pose.position.y = p.y;
-  o.pose.pose.orientation.z = std::sin(p.theta / 2.0);
-  o.pose.pose.orientation.w = std::cos(p.theta / 2.0);
-  return o;
+  return rb::to_odom_msg({t, p, {}, "odom", "base_link"});
 }
 
 rb::StackSetup vineyard_setup() {

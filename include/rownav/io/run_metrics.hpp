@@ -12,6 +12,9 @@
 
 namespace rownav::io {
 
+/// The q-quantile (0..1) of `v` by nearest rank (index round(q (n - 1))); nullopt when empty.
+std::optional<double> percentile(std::vector<double> v, double q);
+
 /// Metrics of one served corridor.
 struct CorridorMetrics {
   int corridor = -1;  ///< true corridor index

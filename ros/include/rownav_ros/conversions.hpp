@@ -3,6 +3,7 @@
 /// sides, so no axis swap happens here).
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/Transform.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
@@ -59,5 +60,16 @@ core::ImuSample to_imu(const sensor_msgs::Imu& msg);
 OdomSample to_odom(const nav_msgs::Odometry& msg);
 /// Twist2 -> geometry_msgs/Twist (linear.x = v, linear.y = vy, angular.z = omega).
 geometry_msgs::Twist to_twist_msg(const core::Twist2& cmd);
+
+/// [rad] rotation about z as a unit quaternion (the inverse of yaw_of).
+geometry_msgs::Quaternion yaw_quaternion(double yaw);
+/// OdomSample -> Odometry (the inverse of to_odom; covariances zero).
+nav_msgs::Odometry to_odom_msg(const OdomSample& s);
+/// ImuSample -> Imu in `frame_id`, without orientation (orientation_covariance[0] = -1, REP 145).
+sensor_msgs::Imu to_imu_msg(const core::ImuSample& s, const std::string& frame_id);
+/// `T_parent_child` at `stamp` [s] as a tf2 message (the inverse of to_isometry).
+geometry_msgs::TransformStamped to_transform_msg(double stamp, const std::string& parent,
+                                                 const std::string& child,
+                                                 const Eigen::Isometry3d& T_parent_child);
 
 }  // namespace rownav::ros_bridge
