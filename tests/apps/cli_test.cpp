@@ -250,6 +250,15 @@ TEST_F(Cli, RenderWritesPngSvgAndPdfLiveAndFromTheRecording) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(bad.err, "rownav: error: --corridor 7 does not exist\n");
   EXPECT_FALSE(fs::exists(*dir_ / "bad.png"));
+  // A pose off the field or not a number: one error line naming --pose, no picture (issue 13).
+  for (const std::string pose : {"1e30,0,0", "nan,0,0", "0,inf,0", "2,0,1e300", "-500,0,0"}) {
+    const Result off = rownav(dir_->path(), "render --field field.yaml --pose " + pose +
+                                                " --out off.png");
+    EXPECT_EQ(off.code, 2) << pose;
+    EXPECT_EQ(off.err.rfind("rownav: error: --pose", 0), 0u) << pose << ": " << off.err;
+    EXPECT_EQ(std::count(off.err.begin(), off.err.end(), '\n'), 1) << off.err;
+    EXPECT_FALSE(fs::exists(*dir_ / "off.png")) << pose;
+  }
   // An unknown picture format names the user's file (not the staging one), before the work.
   const Result bmp = rownav(dir_->path(), "render --field field.yaml --corridor 1 --out v.bmp");
   EXPECT_EQ(bmp.code, 2);
