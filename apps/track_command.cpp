@@ -121,7 +121,8 @@ localize::LocalizerConfig localizer_config(const TrackArgs& a, const io::Recordi
     sim::RobotConfig robot;
     io::decode_config(rec.manifest["robot"], robot, manifest);
     source = "nominal kinematics of the manifest's robot";
-    return io::localizer_config_for(robot, io::decode_sim_config(rec.manifest["sensors"], manifest));
+    return io::localizer_config_for(
+        robot, io::decode_sim_config(rec.manifest["sensors"], manifest).encoders.ticks_per_rev);
   }
   source = "defaults (no robot in the manifest)";
   return {};

@@ -7,7 +7,6 @@
 
 #include "rownav/io/mission_io.hpp"
 #include "rownav/io/yaml_config.hpp"
-#include "rownav/sim/robot.hpp"
 
 namespace rownav::ros_bridge {
 
@@ -51,7 +50,9 @@ StackSetup load_stack(const NodeConfig& node) {
   s.end_of_row = load_or_default<navigate::EndOfRowConfig>(node.end_of_row_config);
   // Footprint and limits exactly as `rownav run` derives them from the same robot file.
   navigate::NavStackConfig stack;
-  io::nav_stack_robot(stack, load_or_default<sim::RobotConfig>(node.robot), sim::SimConfig{});
+  // The robot file as the stack knows it (core::RobotSpec): the node links no simulator.
+  io::nav_stack_robot_limits(
+      stack, node.robot.empty() ? core::RobotSpec{} : io::load_robot_spec(node.robot));
   s.robot = stack.robot;
   s.limits = stack.limits;
   s.limits.validate();

@@ -104,7 +104,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   const core::Pose2 start =
       io::mission_start(truth, order, mission.block, mission.first_turn, c.lead_in);
   sim_ = std::make_unique<sim::Simulator>(*field_, robot, sensors, start);
-  odometry_.emplace(io::localizer_config_for(robot, sensors));
+  odometry_.emplace(io::localizer_config_for(robot, sensors.encoders.ticks_per_rev));
   sink_ = std::make_unique<Sink>(*this);
   ros::param::set("/use_sim_time", true);  // the nodes started after this one follow /clock
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);

@@ -233,7 +233,7 @@ core::Pose2 perturbed_start(const core::Pose2& start, double offset, double yaw)
 std::unique_ptr<navigate::NavStack> make_nav_stack(const ClosedLoopSetup& setup,
                                                    const std::vector<int>& order) {
   navigate::NavStackConfig nav = setup.nav;
-  nav_stack_robot(nav, setup.robot, setup.sensors);
+  nav_stack_robot(nav, setup.robot, setup.sensors.encoders.ticks_per_rev, setup.sensors.lidar.rate_hz);
   navigate::NavStackParts parts;
   parts.pipeline = std::make_unique<detect::DetectionPipeline>(
       make_pipeline(setup.detector, setup.detect_config, setup.sensors.lidar.T_base_lidar()));

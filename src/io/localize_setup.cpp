@@ -5,13 +5,13 @@
 namespace rownav::io {
 namespace {
 
-localize::DriveModel drive_model(sim::DriveKind kind) {
+localize::DriveModel drive_model(core::DriveKind kind) {
   switch (kind) {
-    case sim::DriveKind::differential:
+    case core::DriveKind::differential:
       return localize::DriveModel::differential;
-    case sim::DriveKind::ackermann:
+    case core::DriveKind::ackermann:
       return localize::DriveModel::ackermann;
-    case sim::DriveKind::skid_steer:
+    case core::DriveKind::skid_steer:
       break;
   }
   return localize::DriveModel::skid_steer;
@@ -19,15 +19,14 @@ localize::DriveModel drive_model(sim::DriveKind kind) {
 
 }  // namespace
 
-localize::LocalizerConfig localizer_config_for(const sim::RobotConfig& robot,
-                                               const sim::SimConfig& sim) {
+localize::LocalizerConfig localizer_config_for(const core::RobotSpec& robot, int ticks_per_rev) {
   localize::LocalizerConfig c;
   auto& o = c.odometry;
   o.model = drive_model(robot.drive);
   o.track_width = robot.track_width;
   o.wheel_radius = robot.wheel_radius;
   o.wheelbase = robot.wheelbase;
-  o.ticks_per_rev = sim.encoders.ticks_per_rev;
+  o.ticks_per_rev = ticks_per_rev;
   // Nominal (ideal) ICR parameters, Bertoglio 2023 eq. (2): x_ICR = track / 2, alpha = 1.
   o.x_icr = 0.5 * robot.track_width;
   o.alpha = 1.0;

@@ -1,12 +1,22 @@
 // The robot-file part of NavStackConfig (io/nav_stack_setup.hpp).
 #include "rownav/io/nav_stack_setup.hpp"
 
+#include <string>
+#include <vector>
+
 #include "rownav/io/localize_setup.hpp"
+#include "rownav/io/yaml_config.hpp"
 
 namespace rownav::io {
 
-void nav_stack_robot(navigate::NavStackConfig& nav, const sim::RobotConfig& robot,
-                     const sim::SimConfig& sensors) {
+core::RobotSpec load_robot_spec(const std::filesystem::path& file) {
+  const std::vector<std::string> ignore(kSimulatorRobotKeys.begin(), kSimulatorRobotKeys.end());
+  core::RobotSpec spec;
+  decode_config(load_yaml_file(file), spec, file.string(), ignore);
+  return spec;
+}
+
+void nav_stack_robot_limits(navigate::NavStackConfig& nav, const core::RobotSpec& robot) {
   nav.robot.width = robot.width;
   nav.robot.base_to_front = robot.base_to_front;
   nav.robot.turn = {robot.can_turn_in_place(), robot.min_turn_radius()};
@@ -18,8 +28,13 @@ void nav_stack_robot(navigate::NavStackConfig& nav, const sim::RobotConfig& robo
   nav.limits.max_accel = robot.max_accel;
   nav.limits.max_yaw_accel = robot.max_yaw_accel;
   nav.limits.min_turn_radius = robot.min_turn_radius();
-  nav.localizer = localizer_config_for(robot, sensors);
-  nav.stack.sweep_period = 1.0 / sensors.lidar.rate_hz;
+}
+
+void nav_stack_robot(navigate::NavStackConfig& nav, const core::RobotSpec& robot,
+                     int ticks_per_rev, double lidar_rate_hz) {
+  nav_stack_robot_limits(nav, robot);
+  nav.localizer = localizer_config_for(robot, ticks_per_rev);
+  nav.stack.sweep_period = 1.0 / lidar_rate_hz;
 }
 
 }  // namespace rownav::io

@@ -20,29 +20,11 @@ double rate_limit(double current, double target, double max_step) {
 }  // namespace
 
 void RobotConfig::validate() const {
-  core::check(!name.empty(), "name", "must not be empty");
-  core::check_positive(track_width, "track_width");
-  core::check_positive(wheelbase, "wheelbase");
-  core::check_positive(wheel_radius, "wheel_radius");
+  core::RobotSpec::validate();
   core::check_positive(x_icr, "x_icr");
   core::check_range(alpha, 0.1, 1.5, "alpha");
   core::check_range(slip_noise, 0.0, 0.5, "slip_noise");
   core::check_positive(slip_time_constant, "slip_time_constant");
-  core::check_positive(max_speed, "max_speed");
-  core::check_non_negative(max_reverse_speed, "max_reverse_speed");
-  core::check_positive(max_yaw_rate, "max_yaw_rate");
-  core::check_positive(max_accel, "max_accel");
-  core::check_positive(max_yaw_accel, "max_yaw_accel");
-  core::check_range(max_steer_deg, 1.0, 80.0, "max_steer_deg");
-  core::check_positive(max_steer_rate_deg, "max_steer_rate_deg");
-  core::check_positive(length, "length");
-  core::check_positive(width, "width");
-  core::check_range(base_to_front, 0.0, length, "base_to_front");
-}
-
-double RobotConfig::min_turn_radius() const {
-  if (drive != DriveKind::ackermann) return 0.0;
-  return wheelbase / std::tan(core::deg2rad(max_steer_deg));
 }
 
 Robot::Robot(const RobotConfig& config, std::uint64_t seed, const core::Pose2& start, double stamp)

@@ -5,6 +5,8 @@
 #include <filesystem>
 
 #include "rownav/io/yaml_config.hpp"
+#include "rownav/sim/robot.hpp"
+#include "rownav/sim/simulator.hpp"
 
 namespace rownav::io {
 namespace {
@@ -14,14 +16,14 @@ TEST(LocalizeSetup, NominalParametersNotTrueOnes) {
   robot.track_width = 0.7;
   sim::SimConfig sim;
   sim.encoders.ticks_per_rev = 1024;
-  const auto c = localizer_config_for(robot, sim);
+  const auto c = localizer_config_for(robot, sim.encoders.ticks_per_rev);
   EXPECT_EQ(c.odometry.model, localize::DriveModel::skid_steer);
   EXPECT_DOUBLE_EQ(c.odometry.track_width, 0.7);
   EXPECT_DOUBLE_EQ(c.odometry.x_icr, 0.35);
   EXPECT_DOUBLE_EQ(c.odometry.alpha, 1.0);
   EXPECT_EQ(c.odometry.ticks_per_rev, 1024);
   robot.drive = sim::DriveKind::ackermann;
-  EXPECT_EQ(localizer_config_for(robot, sim).odometry.model, localize::DriveModel::ackermann);
+  EXPECT_EQ(localizer_config_for(robot, sim.encoders.ticks_per_rev).odometry.model, localize::DriveModel::ackermann);
 }
 
 TEST(LocalizeSetup, ShippedDefaultFileEqualsDefaults) {

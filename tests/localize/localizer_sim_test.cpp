@@ -74,7 +74,7 @@ struct Errors {
 };
 
 Errors replay(const SimRun& run, bool use_imu) {
-  LocalizerConfig c = io::localizer_config_for(run.robot, run.sim);
+  LocalizerConfig c = io::localizer_config_for(run.robot, run.sim.encoders.ticks_per_rev);
   c.use_imu = use_imu;
   Localizer loc(c);
   // Feed in stamp order (encoders 50 Hz, IMU 100 Hz, truth 20 Hz).

@@ -106,7 +106,7 @@ inline OpenLoopRecording simulate(const OpenLoopScenario& s) {
   sim::PathFollower driver(points);
   OpenLoopRecording rec;
   rec.T_base_lidar = config.lidar.T_base_lidar();
-  rec.localizer = io::localizer_config_for(robot, config);
+  rec.localizer = io::localizer_config_for(robot, config.encoders.ticks_per_rev);
   rec.sweep_period = 1.0 / config.lidar.rate_hz;
   Capture capture;
   capture.rec = &rec;

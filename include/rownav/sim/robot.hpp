@@ -15,62 +15,38 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/pose2.hpp"
+#include "rownav/core/robot_spec.hpp"
 #include "rownav/core/twist.hpp"
 
 namespace rownav::sim {
 
-/// Drive kinematics.
-enum class DriveKind : std::uint8_t { differential, skid_steer, ackermann };
+/// Drive kinematics (the core's: a robot file names it).
+using DriveKind = core::DriveKind;
 
-/// Geometry, true kinematic parameters and limits of a robot.
-struct RobotConfig {
-  DriveKind drive = DriveKind::skid_steer;  ///< kinematic model
-  std::string name = "skid_steer";          ///< label for reports
-  double track_width = 0.55;                ///< [m] wheel / track centre distance
-  double wheelbase = 0.6;                   ///< [m] ackermann: rear to front axle
-  double wheel_radius = 0.165;              ///< [m] (track: sprocket radius)
+/// A simulated robot: the nominal geometry and limits every robot file gives
+/// (core::RobotSpec, what the stack knows) plus the TRUE kinematics the simulator moves the body
+/// with, unknown to the stack.
+struct RobotConfig : core::RobotSpec {
   double x_icr = 0.40;  ///< [m] true ICR distance, Bertoglio 2023 eq. (2) (ideal: track_width / 2)
   double alpha = 0.90;  ///< [-] true correction factor, Bertoglio 2023 eq. (2) (ideal: 1)
-  double slip_noise = 0.02;          ///< [-] std of the relative random track-speed slip
-  double slip_time_constant = 0.5;   ///< [s] low-pass time constant of the slip noise
-  double max_speed = 1.5;            ///< [m/s] forward
-  double max_reverse_speed = 0.5;    ///< [m/s] backward (positive number)
-  double max_yaw_rate = 1.5;         ///< [rad/s]
-  double max_accel = 1.0;            ///< [m/s^2] |dv/dt| of the commanded speed
-  double max_yaw_accel = 3.0;        ///< [rad/s^2] |domega/dt| of the commanded yaw rate
-  double max_steer_deg = 35.0;       ///< [deg] ackermann: min turn radius = wheelbase / tan(this)
-  double max_steer_rate_deg = 60.0;  ///< [deg/s] ackermann steering rate
-  double length = 0.9;               ///< [m] body footprint length
-  double width = 0.6;                ///< [m] body footprint width
-  double base_to_front = 0.45;       ///< [m] base_link to the front of the footprint
+  double slip_noise = 0.02;         ///< [-] std of the relative random track-speed slip
+  double slip_time_constant = 0.5;  ///< [s] low-pass time constant of the slip noise
 
   template <class S, class V>
   static void fields(S& s, V& v) {
-    v("drive", s.drive);
-    v("name", s.name);
-    v("track_width", s.track_width);
-    v("wheelbase", s.wheelbase);
-    v("wheel_radius", s.wheel_radius);
+    core::RobotSpec::fields(s, v);
+    simulation_fields(s, v);
+  }
+  /// The keys the simulator adds to a robot file (a robot file read as core::RobotSpec skips
+  /// them: io::kSimulatorRobotKeys, tested against this list).
+  template <class S, class V>
+  static void simulation_fields(S& s, V& v) {
     v("x_icr", s.x_icr);
     v("alpha", s.alpha);
     v("slip_noise", s.slip_noise);
     v("slip_time_constant", s.slip_time_constant);
-    v("max_speed", s.max_speed);
-    v("max_reverse_speed", s.max_reverse_speed);
-    v("max_yaw_rate", s.max_yaw_rate);
-    v("max_accel", s.max_accel);
-    v("max_yaw_accel", s.max_yaw_accel);
-    v("max_steer_deg", s.max_steer_deg);
-    v("max_steer_rate_deg", s.max_steer_rate_deg);
-    v("length", s.length);
-    v("width", s.width);
-    v("base_to_front", s.base_to_front);
   }
   void validate() const;
-  /// [m] smallest turn radius: wheelbase / tan(max_steer) for ackermann, 0 otherwise.
-  double min_turn_radius() const;
-  /// True for robots that can rotate on the spot (differential, skid-steer).
-  bool can_turn_in_place() const { return drive != DriveKind::ackermann; }
 };
 
 /// True state of a simulated robot.
@@ -118,12 +94,3 @@ class Robot {
 };
 
 }  // namespace rownav::sim
-
-template <>
-struct rownav::core::EnumNames<rownav::sim::DriveKind> {
-  using E = rownav::sim::DriveKind;
-  static constexpr std::array<std::pair<E, std::string_view>, 3> values{
-      {{E::differential, "differential"},
-       {E::skid_steer, "skid_steer"},
-       {E::ackermann, "ackermann"}}};
-};
