@@ -21,6 +21,7 @@ void NodeConfig::validate() const {
   core::check_non_negative(max_extrapolation, "max_extrapolation");
   core::check_positive(nominal_frame_period, "nominal_frame_period");
   core::check_range(watchdog_rate, 1.0, 1000.0, "watchdog_rate");
+  core::validate_nested(gnss, "gnss");
 }
 
 namespace {

@@ -54,16 +54,21 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   odom_sub_ = nh_.subscribe("odom", 50, &RosNode::on_odom, this);
   // Always: the IMU levels each sweep by gravity; its yaw rate is used only with ~use_imu.
   imu_sub_ = nh_.subscribe("imu", 200, &RosNode::on_imu, this);
+  fix_sub_ = nh_.subscribe("fix", 10, &RosNode::on_fix, this);
   enable_sub_ = pnh_.subscribe("enable", 1, &RosNode::on_enable, this);
+  start_srv_ = pnh_.advertiseService("start", &RosNode::on_start, this);
+  pause_srv_ = pnh_.advertiseService("pause", &RosNode::on_pause, this);
+  stop_srv_ = pnh_.advertiseService("stop", &RosNode::on_stop, this);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
   watchdog_timer_ = nh_.createTimer(ros::Duration(1.0 / c.watchdog_rate), &RosNode::on_timer, this);
   // The state from the start (latched), not only after a first frame.
   std_msgs::String initial;
-  initial.data = last_state_ = std::string(core::enum_name(core_->navigator().state()));
+  initial.data = last_state_ = core_->state_name(core_->navigator().state());
   state_pub_.publish(initial);
-  ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s",
+  ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s, %s",
            c.input.c_str(), c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
-           core_->setup().order.size(), enabled_ ? "driving" : "observing only");
+           core_->setup().order.size(), enabled_ ? "driving" : "observing only",
+           c.autostart ? "mission running" : "waiting for ~start");
 }
 
 RosNode::~RosNode() {
@@ -74,6 +79,7 @@ void RosNode::on_timer(const ros::TimerEvent&) {
   const TickResult t = core_->tick(ros::Time::now().toSec());
   publish_cmd(t.cmd);
   for (const auto& e : t.events) ROS_WARN("rownav_node: %s", e.text.c_str());
+  publish_state(t.state);
   if (ticks_++ % static_cast<int>(std::max(1.0, core_->setup().node.watchdog_rate)) == 0)
     publish_diagnostics(t);
 }
@@ -85,10 +91,14 @@ void RosNode::publish_diagnostics(const TickResult& t) {
   s.name = "rownav_node: inputs and mission";
   s.hardware_id = core_->setup().node.base_frame;
   const bool stopped = t.state == navigate::NavState::safe_stop;
+  const bool held = !core_->mission().running();  // inputs held back on purpose: no warning
+  const std::string phase(core::enum_name(core_->mission().phase()));
   s.level = stopped ? diagnostic_msgs::DiagnosticStatus::ERROR
-            : t.health != navigate::InputHealth::ok ? diagnostic_msgs::DiagnosticStatus::WARN
-                                                    : diagnostic_msgs::DiagnosticStatus::OK;
+            : t.health != navigate::InputHealth::ok && !held
+                ? diagnostic_msgs::DiagnosticStatus::WARN
+                : diagnostic_msgs::DiagnosticStatus::OK;
   s.message = stopped ? "safe stop: " + std::string(core::enum_name(t.stop_reason))
+              : held  ? "mission " + phase + ": command zero"
               : t.health == navigate::InputHealth::lidar_stale    ? "LiDAR stale: command zero"
               : t.health == navigate::InputHealth::odometry_stale ? "odometry stale: command zero"
                                                                   : "ok";
@@ -100,10 +110,13 @@ void RosNode::publish_diagnostics(const TickResult& t) {
   kv("lidar_age_s", std::to_string(t.lidar_age));
   kv("odometry_age_s", std::to_string(t.odometry_age));
   kv("state", std::string(core::enum_name(t.state)));
+  kv("mission", phase);
   const auto& st = core_->stack().stats();
   kv("frames", std::to_string(st.frames));
   kv("dropped_frames", std::to_string(st.dropped_frames));
   kv("dropped_odometry", std::to_string(st.dropped_odometry));
+  kv("gnss_fixes", std::to_string(st.gnss));
+  kv("gnss_fused", std::to_string(core_->stack().localizer().stats().gnss_used));
   a.status.push_back(s);
   diag_pub_.publish(a);
 }
@@ -160,6 +173,45 @@ void RosNode::on_imu(const sensor_msgs::Imu::ConstPtr& msg) {
   }
 }
 
+void RosNode::on_fix(const sensor_msgs::NavSatFix::ConstPtr& msg) {
+  try {
+    const NavSatConversion c = core_->on_fix(*msg);
+    if (!c.rejected.empty())
+      ROS_WARN_THROTTLE(1.0, "rownav_node: GNSS fix rejected: %s", c.rejected.c_str());
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "rownav_node: GNSS fix dropped: %s", e.what());
+  }
+}
+
+bool RosNode::on_start(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  return answer(core_->start(), res);
+}
+
+bool RosNode::on_pause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  return answer(core_->pause(), res);
+}
+
+bool RosNode::on_stop(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  return answer(core_->stop(), res);
+}
+
+bool RosNode::answer(const MissionAnswer& a, std_srvs::Trigger::Response& res) {
+  if (!core_->mission().running()) publish_stop();  // zero at once, not at the next message
+  res.success = a.success;
+  res.message = a.message;
+  ROS_INFO("rownav_node: %s", a.message.c_str());
+  publish_state(core_->navigator().state());
+  return true;  // the call was handled; success says whether the request was granted
+}
+
+void RosNode::publish_state(navigate::NavState nav) {
+  const std::string state = core_->state_name(nav);
+  if (state == last_state_) return;
+  std_msgs::String s;
+  s.data = last_state_ = state;
+  state_pub_.publish(s);
+}
+
 void RosNode::on_enable(const std_msgs::Bool::ConstPtr& msg) {
   if (msg->data == enabled_) return;
   if (!msg->data) publish_stop();  // the last command sent must not keep the robot moving
@@ -174,16 +226,10 @@ void RosNode::publish_cmd(const core::Twist2& cmd) {
 void RosNode::publish_stop() { publish_cmd({}); }
 
 void RosNode::publish_frame(const FrameResult& r, const ros::Time& stamp) {
-  if (!r.ok) ROS_WARN_THROTTLE(1.0, "rownav_node: stopping: %s", r.error.c_str());
+  if (!r.ok && !r.held) ROS_WARN_THROTTLE(1.0, "rownav_node: stopping: %s", r.error.c_str());
   publish_cmd(r.cmd);
   for (const auto& e : r.events) ROS_INFO("rownav_node: %s", e.text.c_str());
-  const std::string state(core::enum_name(r.state));
-  if (state != last_state_) {
-    std_msgs::String s;
-    s.data = state;
-    state_pub_.publish(s);
-    last_state_ = state;
-  }
+  publish_state(r.state);
   if (!r.ok) return;
   geometry_msgs::Vector3Stamped t;
   t.header.stamp = stamp;

@@ -45,7 +45,10 @@ std::unique_ptr<navigate::NavStack> make_stack(const StackSetup& s,
 }  // namespace
 
 RowNavCore::RowNavCore(StackSetup setup)
-    : setup_(std::move(setup)), stack_(make_stack(setup_, Eigen::Isometry3d::Identity())) {}
+    : setup_(std::move(setup)),
+      stack_(make_stack(setup_, Eigen::Isometry3d::Identity())),
+      mission_(setup_.node.autostart),
+      navsat_(setup_.node.gnss) {}
 
 RowNavCore::~RowNavCore() = default;
 
@@ -70,8 +73,18 @@ FrameResult RowNavCore::fail(double stamp, std::string why) {
   return r;
 }
 
+FrameResult RowNavCore::held(double stamp) const {
+  FrameResult r;
+  r.held = true;
+  r.stamp = stamp;
+  r.state = stack_->navigator().state();
+  r.stop_reason = stack_->navigator().stop_reason();
+  return r;
+}
+
 FrameResult RowNavCore::on_cloud(const sensor_msgs::PointCloud2& msg) {
   const double stamp = to_sec(msg.header.stamp);
+  if (!mission_.running()) return held(stamp);
   try {
     if (!mount_set_) return fail(stamp, "no LiDAR mount (T_base_lidar) yet");
     stack_->on_cloud(to_point_cloud(msg));
@@ -83,6 +96,7 @@ FrameResult RowNavCore::on_cloud(const sensor_msgs::PointCloud2& msg) {
 
 FrameResult RowNavCore::on_scan(const sensor_msgs::LaserScan& msg) {
   const double stamp = to_sec(msg.header.stamp);
+  if (!mission_.running()) return held(stamp);
   try {
     if (!mount_set_) return fail(stamp, "no LiDAR mount (T_base_lidar) yet");
     stack_->on_scan(to_scan(msg));
@@ -100,6 +114,12 @@ void RowNavCore::on_imu(const sensor_msgs::Imu& msg) {
   }
 }
 
+NavSatConversion RowNavCore::on_fix(const sensor_msgs::NavSatFix& msg) {
+  NavSatConversion c = navsat_.convert(msg);
+  stack_->on_gnss(c.fix);
+  return c;
+}
+
 std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
   try {
     const OdomSample s = to_odom(msg);
@@ -107,7 +127,7 @@ std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
       return std::nullopt;  // late or not finite
     last_odom_stamp_ = s.stamp;
     if (!started_) return std::nullopt;
-    return stack_->command(s.stamp).cmd;
+    return mission_.gate(stack_->command(s.stamp).cmd);
   } catch (const std::exception&) {
     return core::Twist2{};  // a stop, to be safe
   }
@@ -121,7 +141,12 @@ TickResult RowNavCore::tick(double stamp) {
     return r;
   }
   navigate::NavCommand c = stack_->command(stamp);
-  r.cmd = c.cmd;
+  r.cmd = mission_.gate(c.cmd);
+  // Held: the LiDAR goes stale on purpose (frames held back), no warning for that.
+  if (!mission_.running())
+    std::erase_if(c.events, [](const navigate::NavEvent& e) {
+      return e.kind == navigate::NavEventKind::input_stale;
+    });
   r.health = c.health;
   r.lidar_age = c.lidar_age;
   r.odometry_age = c.odometry_age;

@@ -53,6 +53,47 @@ rb::StackSetup vineyard_setup() {
   return rb::load_stack(n);
 }
 
+/// OS1-16 sweeps from a static robot, one PointCloud2 per call (the mount stays set).
+class Sweeps {
+ public:
+  explicit Sweeps(const Scene& scene)
+      : scene_(scene),
+        caster_(scene.field.mesh),
+        config_(sim::lidar_preset("os1_16")),
+        lidar_(config_, 5) {}
+  Eigen::Isometry3d mount() const { return config_.T_base_lidar(); }
+  sensor_msgs::PointCloud2 at(double t) {
+    const Pose2 p = scene_.pose;
+    const sim::PoseAt pose_at = [&](double) {
+      Eigen::Isometry3d T = p.to_isometry();
+      T.translation().z() = scene_.field.terrain.height(p.x, p.y);
+      return T;
+    };
+    auto cloud = lidar_.sweep(caster_, pose_at, t);
+    cloud.frame_id = "os_lidar";
+    return rb::to_cloud_msg(cloud);
+  }
+
+ private:
+  const Scene& scene_;
+  const sim::RayCaster caster_;
+  sim::LidarConfig config_;
+  sim::Lidar lidar_;
+};
+
+/// Odometry at t and t + 0.05 s, then the sweep stamped t.
+rb::FrameResult step(rb::RowNavCore& core, Sweeps& sweeps, const Pose2& p, double t) {
+  core.on_odom(odom_msg(t, p));
+  core.on_odom(odom_msg(t + 0.05, p));
+  return core.on_cloud(sweeps.at(t));
+}
+
+void expect_zero(const rownav::core::Twist2& c) {
+  EXPECT_EQ(c.v, 0.0);
+  EXPECT_EQ(c.vy, 0.0);
+  EXPECT_EQ(c.omega, 0.0);
+}
+
 /// Runs `frames` sweeps at 10 Hz from a static robot; returns the last frame's result.
 rb::FrameResult drive(const Scene& scene, rb::RowNavCore& core, int frames) {
   const sim::RayCaster caster(scene.field.mesh);
@@ -169,4 +210,109 @@ TEST(RowNavCore, TheWatchdogTickStopsTheRobotWhenMessagesStop) {
   bool said = false;
   for (const auto& e : stale.events) said |= e.kind == rownav::navigate::NavEventKind::input_stale;
   EXPECT_TRUE(said);
+}
+
+TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
+  const Scene scene(0.0, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  Sweeps sweeps(scene);
+  core.set_mount(sweeps.mount());
+  double t = 100.0;
+  rb::FrameResult r;
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_GT(r.cmd.v, 0.0);
+  EXPECT_TRUE(core.pause().success);
+  EXPECT_EQ(core.state_name(core.navigator().state()), "paused");
+  // 5 s paused, the robot standing: odometry at 20 Hz, watchdog ticks, sweeps at 10 Hz.
+  sensor_msgs::PointCloud2 cloud = sweeps.at(t);
+  for (int k = 0; k < 100; ++k, t += 0.05) {
+    if (const auto c = core.on_odom(odom_msg(t, scene.pose))) expect_zero(*c);
+    const rb::TickResult tick = core.tick(t + 0.01);
+    expect_zero(tick.cmd);
+    for (const auto& e : tick.events)
+      EXPECT_NE(e.kind, rownav::navigate::NavEventKind::input_stale);
+    if (k % 2 != 0) continue;
+    cloud.header.stamp.fromSec(t);
+    const rb::FrameResult held = core.on_cloud(cloud);
+    EXPECT_TRUE(held.held);
+    EXPECT_TRUE(held.error.empty()) << held.error;
+    expect_zero(held.cmd);
+  }
+  // Frames processed while the robot is held still would have ended in a safe stop
+  // (odometry_implausible, HeldStillWhileTheStackCommandsMotionEndsInASafeStop).
+  EXPECT_EQ(core.navigator().state(), rownav::navigate::NavState::in_row);
+  const rb::MissionAnswer a = core.start();
+  EXPECT_TRUE(a.success);
+  EXPECT_EQ(a.message, "resumed in in_row");
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
+  EXPECT_EQ(core.state_name(r.state), "in_row");
+  EXPECT_GT(r.cmd.v, 0.05);
+}
+
+TEST(RowNavCore, HeldStillWhileTheStackCommandsMotionEndsInASafeStop) {
+  // Why a pause holds frames back: the stack's own watchdog takes a robot that does not move
+  // while commanded to for a broken odometry.
+  const Scene scene(0.0, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  Sweeps sweeps(scene);
+  core.set_mount(sweeps.mount());
+  rb::FrameResult r;
+  for (int k = 0; k < 40 && r.state != rownav::navigate::NavState::safe_stop; ++k)
+    r = step(core, sweeps, scene.pose, 100.0 + 0.1 * k);
+  EXPECT_EQ(r.state, rownav::navigate::NavState::safe_stop);
+  EXPECT_EQ(r.stop_reason, rownav::navigate::StopReason::odometry_implausible);
+}
+
+TEST(RowNavCore, WaitsForStartAndAStopIsFinal) {
+  const Scene scene(0.0, 0.0);
+  rb::StackSetup setup = vineyard_setup();
+  setup.node.autostart = false;
+  rb::RowNavCore core(setup);
+  Sweeps sweeps(scene);
+  core.set_mount(sweeps.mount());
+  EXPECT_EQ(core.state_name(core.navigator().state()), "waiting");
+  double t = 100.0;
+  rb::FrameResult r;
+  for (int k = 0; k < 3; ++k, t += 0.1) {
+    r = step(core, sweeps, scene.pose, t);
+    EXPECT_TRUE(r.held);
+    expect_zero(r.cmd);
+  }
+  expect_zero(core.tick(t).cmd);
+  EXPECT_EQ(core.start().message, "mission started in in_row");
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_GT(r.cmd.v, 0.05);
+  EXPECT_TRUE(core.stop().success);
+  EXPECT_EQ(core.state_name(core.navigator().state()), "stopped");
+  const auto after = core.on_odom(odom_msg(t, scene.pose));
+  ASSERT_TRUE(after);
+  expect_zero(*after);
+  r = core.on_cloud(sweeps.at(t));
+  EXPECT_TRUE(r.held);
+  expect_zero(r.cmd);
+  expect_zero(core.tick(t + 0.01).cmd);
+  EXPECT_FALSE(core.start().success);
+}
+
+TEST(RowNavCore, NavSatFixesReachTheStackRejectedOnesAsOutages) {
+  rb::RowNavCore core(vineyard_setup());
+  sensor_msgs::NavSatFix f;
+  f.header.stamp.fromSec(10.0);
+  f.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+  f.latitude = 51.597, f.longitude = -0.977, f.altitude = 80.0;
+  EXPECT_TRUE(core.on_fix(f).fix.valid);
+  f.header.stamp.fromSec(10.2);
+  f.status.status = sensor_msgs::NavSatStatus::STATUS_NO_FIX;
+  const rb::NavSatConversion none = core.on_fix(f);
+  EXPECT_FALSE(none.fix.valid);
+  EXPECT_FALSE(none.rejected.empty());
+  EXPECT_EQ(core.stack().stats().gnss, 2u);  // both stamped samples accepted by the stack
+  f.header.stamp.fromSec(9.0);               // older than the newest: dropped by the stack
+  f.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+  core.on_fix(f);
+  EXPECT_EQ(core.stack().stats().dropped_gnss, 1u);
 }

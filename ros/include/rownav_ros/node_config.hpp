@@ -9,6 +9,7 @@
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/mission_plan.hpp"
 #include "rownav/navigate/navigator.hpp"
+#include "rownav_ros/navsat_conversion.hpp"
 
 namespace rownav::ros_bridge {
 
@@ -33,6 +34,8 @@ struct NodeConfig {
   /// T_base_lidar as [x, y, z, roll, pitch, yaw] (m, rad); empty: looked up in tf2 once
   std::vector<double> lidar_mount;
   bool enabled = true;             ///< publish cmd_vel (false: observe only)
+  /// the mission runs from start-up (false: command zero, state `waiting`, until ~start)
+  bool autostart = true;
   bool use_imu = false;            ///< gyro yaw rate replaces the odometry yaw rate
   double odom_history = 2.0;       ///< [s] odometry poses kept for frame-stamp interpolation
   double max_extrapolation = 0.2;  ///< [s] a frame may be this much newer than the odometry
@@ -40,6 +43,7 @@ struct NodeConfig {
   /// [Hz] the watchdog timer: cmd_vel is re-evaluated (zero on stale inputs) at this rate even
   /// when no message arrives; diagnostics are published once a second
   double watchdog_rate = 20.0;
+  NavSatConfig gnss;  ///< `fix` (sensor_msgs/NavSatFix) -> local ENU (~gnss/<key>)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -58,11 +62,13 @@ struct NodeConfig {
     v("base_frame", s.base_frame);
     v("lidar_mount", s.lidar_mount);
     v("enabled", s.enabled);
+    v("autostart", s.autostart);
     v("use_imu", s.use_imu);
     v("odom_history", s.odom_history);
     v("max_extrapolation", s.max_extrapolation);
     v("nominal_frame_period", s.nominal_frame_period);
     v("watchdog_rate", s.watchdog_rate);
+    v("gnss", s.gnss);
   }
   void validate() const;
 };

@@ -11,6 +11,8 @@
 
 #include "rownav/navigate/nav_stack.hpp"
 #include "rownav_ros/conversions.hpp"
+#include "rownav_ros/mission_control.hpp"
+#include "rownav_ros/navsat_conversion.hpp"
 #include "rownav_ros/node_config.hpp"
 
 namespace rownav::ros_bridge {
@@ -18,6 +20,7 @@ namespace rownav::ros_bridge {
 /// The answer for one LiDAR frame.
 struct FrameResult {
   bool ok = false;     ///< false: `error` says why, cmd is zero, nothing else is meaningful
+  bool held = false;   ///< not processed: the mission is not running (cmd zero, no error)
   std::string error;   ///< one line
   double stamp = 0.0;  ///< [s] frame stamp
   core::Twist2 cmd;    ///< limited command (zero on error or in a terminal state)
@@ -40,6 +43,12 @@ struct TickResult {
 
 /// Per-frame processing of rownav_node. Not thread-safe (call from one callback queue).
 /// Frame and odometry handlers never throw.
+///
+/// Mission control (start / pause / stop, MissionControl): every command returned is exactly
+/// zero while the mission is not running, and LiDAR frames are held back from the stack. The
+/// stack then zeroes its own command (its watchdog: LiDAR stale), so that its
+/// odometry-plausibility check does not take the robot held still by the pause for a broken
+/// odometry (safe stop); odometry, IMU and GNSS keep coming.
 class RowNavCore {
  public:
   /// Builds the detector (identity mount until set_mount), tracker, controller, end-of-row
@@ -66,6 +75,17 @@ class RowNavCore {
   TickResult tick(double stamp);
   /// IMU: gravity levelling of sweeps, gyro yaw rate (NodeConfig::use_imu).
   void on_imu(const sensor_msgs::Imu& msg);
+  /// GNSS: converted to the local ENU frame (NavSatConverter) and handed to the stack, a
+  /// rejected fix as an outage (valid = false). Returns the conversion (why it was rejected).
+  NavSatConversion on_fix(const sensor_msgs::NavSatFix& msg);
+
+  /// Operator requests (MissionControl, with the navigator's current state).
+  MissionAnswer start() { return mission_.start(navigator().state()); }
+  MissionAnswer pause() { return mission_.pause(navigator().state()); }
+  MissionAnswer stop() { return mission_.stop(navigator().state()); }
+  const MissionControl& mission() const { return mission_; }
+  /// The state to publish for the navigator state `nav` (MissionControl::state).
+  std::string state_name(navigate::NavState nav) const { return mission_.state(nav); }
 
   const StackSetup& setup() const { return setup_; }
   const navigate::Navigator& navigator() const { return stack_->navigator(); }
@@ -76,9 +96,12 @@ class RowNavCore {
  private:
   FrameResult frame(double stamp);
   FrameResult fail(double stamp, std::string why);
+  FrameResult held(double stamp) const;
 
   StackSetup setup_;
   std::unique_ptr<navigate::NavStack> stack_;
+  MissionControl mission_;
+  NavSatConverter navsat_;
   bool mount_set_ = false, started_ = false;
   std::optional<double> last_odom_stamp_;
 };
