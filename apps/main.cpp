@@ -8,6 +8,7 @@
 #include "rownav/core/version.hpp"
 #ifdef ROWNAV_WITH_ROSBAG
 #include "rownav_ros/rosbag_reader.hpp"  // ROS 1 .bag files (built with ROS: ros/CMakeLists.txt)
+#include "rownav_ros/rosbag_writer.hpp"
 #endif
 
 int main(int argc, char** argv) {
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 #ifdef ROWNAV_WITH_ROSBAG
   rownav::ros_bridge::register_rosbag_reader();
+  rownav::ros_bridge::register_rosbag_writer();
 #endif
   rownav::app::add_sim_command(app);
   rownav::app::add_render_command(app);

@@ -19,7 +19,7 @@ namespace rownav::app {
 namespace {
 
 struct SimArgs {
-  std::filesystem::path field, out, mcap;
+  std::filesystem::path field, out, mcap, bag;
   std::optional<std::filesystem::path> robot, sensors, path;
   std::string lidar;
   int lidar_every = 1;
@@ -52,6 +52,7 @@ std::vector<sim::PathPoint> scripted_path(const sim::FieldTruth& truth, const Se
 }
 
 void run_sim(const SimArgs& a) {
+  if (!a.bag.empty()) io::check_bag_writable(a.bag);  // said before the drive
   Setup s;
   s.field = io::load_field(a.field, &s.field_config);
   s.robot = load_robot(a.robot);
@@ -68,13 +69,20 @@ void run_sim(const SimArgs& a) {
   const DriveSummary d = run_scripted_drive(simulator, driver, sink, a.max_time, !a.quiet);
   // The MCAP is claimed before the drive's recording is moved into place: a refused name is
   // said before the work is kept (io/safe_output.hpp).
-  std::optional<io::OutputFile> bag;
-  if (!a.mcap.empty()) bag.emplace(a.mcap, a.overwrite);
+  std::optional<io::OutputFile> mcap, bag;
+  if (!a.mcap.empty()) mcap.emplace(a.mcap, a.overwrite);
+  if (!a.bag.empty()) bag.emplace(a.bag, a.overwrite);
   writer.commit();
-  if (bag) {
-    io::write_mcap_recording(io::read_recording(a.out), bag->staging());
-    bag->commit();
+  if (mcap) {
+    io::write_mcap_recording(io::read_recording(a.out), mcap->staging());
+    mcap->commit();
     std::cout << "ROS 2 bag: " << a.mcap.string() << "\n";
+  }
+  if (bag) {
+    io::write_bag_recording(io::read_recording(a.out), bag->staging(), a.bag);
+    bag->commit();
+    std::cout << (a.bag.extension() == ".mcap" ? "ROS 2 bag: " : "ROS 1 bag: ") << a.bag.string()
+              << "\n";
   }
 
   PictureContent pic;
@@ -107,6 +115,10 @@ void add_sim_command(CLI::App& app) {
   c->add_option("--mcap", args->mcap,
                 "also write the recording as a ROS 2 bag (MCAP, zstd): /points, /imu, and the "
                 "true poses as /odom (docs/bags.md)");
+  c->add_option("--bag", args->bag,
+                "also write the recording as a bag, by extension: FILE.mcap (ROS 2) or FILE.bag "
+                "(ROS 1, when rownav is built with ROS): /points, /scan, /imu, the true poses as "
+                "/odom, /tf_static and the manifest on /rownav/manifest (docs/bags.md)");
   c->add_option("--lidar-every", args->lidar_every, "record one LiDAR frame in N")->check(CLI::PositiveNumber);
   c->add_option("--max-time", args->max_time, "[s] stop the drive after this simulated time")->check(CLI::PositiveNumber);
   c->add_option("--seed", args->seed, "seed of every noise source (overrides the sensors file)");

@@ -205,6 +205,24 @@ core::Scan2D to_scan(const sensor_msgs::LaserScan& msg) {
   return s;
 }
 
+sensor_msgs::LaserScan to_scan_msg(const core::Scan2D& scan) {
+  sensor_msgs::LaserScan msg;
+  msg.header.stamp.fromSec(scan.stamp);
+  msg.header.frame_id = scan.frame_id;
+  msg.angle_min = static_cast<float>(scan.angle_min);
+  msg.angle_increment = static_cast<float>(scan.angle_increment);
+  msg.angle_max = static_cast<float>(
+      scan.angle_min +
+      scan.angle_increment * static_cast<double>(scan.ranges.empty() ? 0 : scan.ranges.size() - 1));
+  msg.time_increment = static_cast<float>(scan.time_increment);
+  msg.scan_time = static_cast<float>(scan.time_increment * static_cast<double>(scan.ranges.size()));
+  msg.range_min = static_cast<float>(scan.range_min);
+  msg.range_max = static_cast<float>(scan.range_max);
+  msg.ranges = scan.ranges;
+  msg.intensities = scan.intensities;
+  return msg;
+}
+
 core::ImuSample to_imu(const sensor_msgs::Imu& msg) {
   core::ImuSample s;
   s.stamp = to_sec(msg.header.stamp);

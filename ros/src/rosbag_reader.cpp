@@ -7,6 +7,8 @@
 #include <sensor_msgs/Imu.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/String.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <memory>
@@ -14,6 +16,7 @@
 
 #include "rownav/io/input_error.hpp"
 #include "rownav_ros/conversions.hpp"
+#include "rownav_ros/rosbag_writer.hpp"
 
 namespace rownav::ros_bridge {
 
@@ -66,6 +69,21 @@ struct CloudSource {
   std::string topic;
 };
 
+/// The manifest a bag written by rownav carries (rosbag_writer.hpp), so that a replay keeps the
+/// LiDAR mount; a bag from elsewhere has none.
+YAML::Node read_manifest(rosbag::Bag& bag, const fs::path& file) {
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(kManifestTopic))) {
+    const auto s = m.instantiate<std_msgs::String>();
+    if (!s) continue;
+    try {
+      return YAML::Load(s->data);
+    } catch (const YAML::Exception& e) {
+      throw io::InputError(file.string(), std::string("topic ") + kManifestTopic, e.what());
+    }
+  }
+  return {};
+}
+
 template <class T>
 void sort_by_stamp(std::vector<T>& v) {
   std::stable_sort(v.begin(), v.end(), [](const T& a, const T& b) { return a.stamp < b.stamp; });
@@ -79,6 +97,7 @@ io::Recording read_rosbag_recording(const fs::path& file, const io::BagTopics& t
   rec.dir = file;
   try {
     src->bag.open(file.string(), rosbag::bagmode::Read);
+    rec.manifest = read_manifest(src->bag, file);
     rosbag::View all(src->bag);
     src->topic = choose(all, topics.cloud, kCloud, "cloud", file);
     const std::string scan = choose(all, topics.scan, kScan, "scan", file);

@@ -98,6 +98,11 @@ std::map<std::string, BagReader>& bag_readers() {
   return readers;
 }
 
+std::map<std::string, BagWriter>& bag_writers() {
+  static std::map<std::string, BagWriter> writers;
+  return writers;
+}
+
 }  // namespace
 
 bool is_bag_file(const std::filesystem::path& file) {
@@ -108,6 +113,33 @@ bool is_bag_file(const std::filesystem::path& file) {
 void register_bag_reader(const std::string& extension, BagReader reader) {
   if (reader) bag_readers()[extension] = std::move(reader);
   else bag_readers().erase(extension);
+}
+
+void register_bag_writer(const std::string& extension, BagWriter writer) {
+  if (writer) bag_writers()[extension] = std::move(writer);
+  else bag_writers().erase(extension);
+}
+
+void check_bag_writable(const std::filesystem::path& file) {
+  const std::string ext = lower_extension(file);
+  if (ext == ".mcap" || bag_writers().count(ext) > 0) return;
+  if (ext == ".bag")
+    throw InputError(file.string(), "",
+                     "ROS 1 bags need librosbag: rownav was built without ROS (docs/bags.md); "
+                     "write a .mcap or rebuild with -DROWNAV_BUILD_ROS=ON");
+  throw InputError(file.string(), "", "unknown bag format '" + ext + "' (.mcap or .bag)");
+}
+
+void write_bag_recording(const Recording& rec, const std::filesystem::path& file,
+                         const std::filesystem::path& target) {
+  const std::string ext = lower_extension(target);
+  if (ext == ".mcap") return write_mcap_recording(rec, file);
+  check_bag_writable(target);
+  try {
+    bag_writers().at(ext)(rec, file);
+  } catch (const InputError& e) {  // name the user's file, not the staging one
+    throw InputError(target.string(), e.position(), e.reason());
+  }
 }
 
 Recording read_bag_recording(const std::filesystem::path& file, const BagTopics& topics) {

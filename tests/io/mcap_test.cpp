@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/cli_runner.hpp"
+#include "rownav/io/bag_recording.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/mcap.hpp"
 #include "rownav/io/mcap_reader.hpp"
@@ -194,6 +195,35 @@ TEST(Mcap, WriterRefusesBadConfig) {
   c.compression = "lz4";
   c.chunk_bytes = 0;
   EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+TEST(BagWriters, McapIsAlwaysWritableABagOnlyWithAWriterAndOtherFormatsNever) {
+  EXPECT_NO_THROW(check_bag_writable("run.mcap"));
+  EXPECT_NO_THROW(check_bag_writable("RUN.MCAP"));
+  register_bag_writer(".bag", nullptr);  // as in a build without ROS
+  try {
+    check_bag_writable("run.bag");
+    ADD_FAILURE() << "a .bag without a writer was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("librosbag"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(check_bag_writable("run.db3"), InputError);
+  int written = 0;
+  register_bag_writer(".bag", [&](const Recording&, const fs::path&) { ++written; });
+  EXPECT_NO_THROW(check_bag_writable("run.bag"));
+  write_bag_recording(Recording{}, "staging.tmp", "run.bag");
+  EXPECT_EQ(written, 1);
+  // The writer's error names the user's file, not the staging name.
+  register_bag_writer(".bag", [](const Recording&, const fs::path& f) {
+    throw InputError(f.string(), "", "disk full");
+  });
+  try {
+    write_bag_recording(Recording{}, ".run.bag.partial", "run.bag");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "run.bag: disk full");
+  }
+  register_bag_writer(".bag", nullptr);
 }
 
 }  // namespace

@@ -162,6 +162,25 @@ TEST(RosConversions, LaserScan) {
   EXPECT_EQ(s.to_points().size(), 1u);
 }
 
+TEST(RosConversions, LaserScanRoundTrip) {
+  rownav::core::Scan2D s;
+  s.stamp = 12.5, s.frame_id = "laser";
+  s.angle_min = -2.0, s.angle_increment = 0.25, s.time_increment = 1e-4;
+  s.range_min = 0.05, s.range_max = 30.0;
+  s.ranges = {1.0f, std::numeric_limits<float>::infinity(), 2.5f};
+  s.intensities = {10.f, 0.f, 7.f};
+  const sensor_msgs::LaserScan m = rb::to_scan_msg(s);
+  EXPECT_FLOAT_EQ(m.angle_max, -1.5f);  // angle_min + 2 increments
+  EXPECT_FLOAT_EQ(m.scan_time, 3e-4f);
+  const rownav::core::Scan2D back = rb::to_scan(m);
+  EXPECT_DOUBLE_EQ(back.stamp, 12.5);
+  EXPECT_EQ(back.frame_id, "laser");
+  EXPECT_FLOAT_EQ(float(back.angle_min), -2.0f);
+  EXPECT_FLOAT_EQ(float(back.angle_increment), 0.25f);
+  EXPECT_EQ(back.ranges, s.ranges);
+  EXPECT_EQ(back.intensities, s.intensities);
+}
+
 TEST(RosConversions, ImuOdometryTwist) {
   sensor_msgs::Imu imu;
   imu.header.stamp = ros::Time(2, 0);

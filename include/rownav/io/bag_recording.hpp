@@ -38,6 +38,22 @@ using BagReader =
 /// Not thread-safe: call at start-up.
 void register_bag_reader(const std::string& extension, BagReader reader);
 
+/// A writer of another bag format (ROS 1 `.bag`: ros/, built only with ROS): the recording to
+/// `file`, in the same streams and topics as write_mcap_recording.
+using BagWriter = std::function<void(const Recording& rec, const std::filesystem::path& file)>;
+/// Registers `writer` for files ending in `extension` (".bag"; null unregisters). Not
+/// thread-safe: call at start-up.
+void register_bag_writer(const std::string& extension, BagWriter writer);
+
+/// InputError unless a bag can be written to `file`: ".mcap" always, others when a writer is
+/// registered (".bag" only with ROS at build time). Said before any work.
+void check_bag_writable(const std::filesystem::path& file);
+
+/// Writes `rec` to `file` in the format of `target`'s extension (`file` may be a staging name
+/// of `target`, io::OutputFile): ".mcap" write_mcap_recording, others a registered writer.
+void write_bag_recording(const Recording& rec, const std::filesystem::path& file,
+                         const std::filesystem::path& target);
+
 /// Reads a bag by its extension: ".mcap" read_mcap_recording, others through a registered
 /// reader; InputError when none is registered (".bag" without ROS at build time).
 Recording read_bag_recording(const std::filesystem::path& file, const BagTopics& topics = {});

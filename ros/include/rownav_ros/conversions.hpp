@@ -54,6 +54,8 @@ sensor_msgs::PointCloud2 to_cloud_msg(const core::PointCloud& cloud);
 /// LaserScan -> Scan2D (same conventions: bearings counter-clockwise, +inf = no return).
 /// Intensities are copied only when there is one per range.
 core::Scan2D to_scan(const sensor_msgs::LaserScan& msg);
+/// Scan2D -> LaserScan (the inverse of to_scan; scan_time = ranges x time_increment).
+sensor_msgs::LaserScan to_scan_msg(const core::Scan2D& scan);
 /// Imu -> ImuSample (angular velocity, linear acceleration; orientation ignored).
 core::ImuSample to_imu(const sensor_msgs::Imu& msg);
 /// Odometry -> OdomSample.
