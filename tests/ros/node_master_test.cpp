@@ -112,6 +112,15 @@ int zero_commands(Listener& l, Clock::time_point from, std::chrono::milliseconds
   return n;
 }
 
+/// Prints the files on destruction when the test has failed (an ASSERT returns early too).
+struct PrintOnFailure {
+  std::vector<std::string> files;
+  ~PrintOnFailure() {
+    if (::testing::Test::HasFailure())
+      for (const auto& f : files) std::cerr << f << ":\n" << read_file(f);
+  }
+};
+
 std_srvs::Trigger call(const std::string& name) {
   std_srvs::Trigger t;
   EXPECT_TRUE(ros::service::call("/rownav_node/" + name, t)) << name;
@@ -127,6 +136,7 @@ TEST_F(NodeAgainstAMaster, PauseStartStopServicesZeroTheCommandAndResume) {
   const std::string robot = config + "/robots/skid_steer.yaml";
   const std::string mission = config + "/missions/two_corridors.yaml";
   const std::string sim_log = (dir / "sim.log").string(), log = (dir / "node.log").string();
+  const PrintOnFailure print{{log, sim_log}};
   Background sim(
       env_ + "exec '" ROWNAV_SIM_NODE_BINARY "' _field:=" + (dir / "field.yaml").string() +
       " _robot:=" + robot + " _sensors:=" + config + "/sensors/os1_16.yaml _mission:=" + mission +
@@ -175,7 +185,6 @@ TEST_F(NodeAgainstAMaster, PauseStartStopServicesZeroTheCommandAndResume) {
   ros::shutdown();
   EXPECT_TRUE(node.running());
   EXPECT_EQ(node.stop(), 0);
-  if (HasFailure()) std::cerr << "node:\n" << read_file(log) << "sim:\n" << read_file(sim_log);
 }
 
 }  // namespace
