@@ -250,6 +250,10 @@ void NavStack::apply(const NavOutput& out) {
 core::Twist2 NavStack::limit(const core::Twist2& cmd, double stamp) {
   const double dt =
       last_command_stamp_ ? stamp - *last_command_stamp_ : config_.stack.command_period;
+  // A second command at the same instant (a frame's command right after the odometry's, or a
+  // ROS timer and a frame on one stamp) may not change the first: apply_limits takes dt 0 as
+  // "no acceleration limit", which let the command jump 0.1 -> 0.8 m/s at once (issue 15).
+  if (!(dt > 0.0)) return sent_cmd_;
   sent_cmd_ = control::apply_limits(cmd, sent_cmd_, dt, config_.limits);
   return sent_cmd_;
 }

@@ -89,6 +89,29 @@ TEST(NavStack, TurnsRawSamplesIntoTrackedRowsAndACommand) {
   EXPECT_LT(std::abs(cmds.back().frame ? cmds.back().frame->tracking->lateral_error : 0.0), 0.1);
 }
 
+TEST(NavStack, ASecondCommandAtTheSameInstantKeepsTheAccelerationLimit) {
+  NavStack s = make_stack();
+  const localize::WheelOdometryConfig w;
+  const double ticks_per_m = w.ticks_per_rev / (2.0 * std::numbers::pi * w.wheel_radius);
+  const double max_accel = NavStackConfig{}.limits.max_accel;
+  double last_v = 0.0, last_t = 0.0, top = 0.0;
+  for (int k = 1; k <= 200; ++k) {
+    const double t = 0.01 * k;
+    if (k % 2 == 0) {
+      const auto ticks = static_cast<std::int64_t>(std::llround(0.5 * t * ticks_per_m));
+      s.on_encoders({t, ticks, ticks, 0.0});
+    }
+    if (k % 4 == 0) s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
+    // Twice per instant, as an adapter whose timer and frame callbacks share a stamp.
+    const NavCommand first = s.command(t), second = s.command(t);
+    EXPECT_EQ(second.cmd.v, first.cmd.v) << t;
+    EXPECT_EQ(second.cmd.omega, first.cmd.omega) << t;
+    EXPECT_LE(first.cmd.v - last_v, max_accel * (t - last_t) + 1e-12) << t;
+    last_v = first.cmd.v, last_t = t, top = std::max(top, first.cmd.v);
+  }
+  EXPECT_GT(top, 0.5);  // it did drive, ramping up
+}
+
 TEST(NavStack, TheSameSamplesGiveBitIdenticalCommands) {
   NavStack a = make_stack(), b = make_stack();
   const auto ca = drive(a, 0.5), cb = drive(b, 0.5);
