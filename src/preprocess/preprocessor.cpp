@@ -111,8 +111,8 @@ const Preprocessed& Preprocessor::run(std::span<const Eigen::Vector2f> points_ba
   return out_;
 }
 
-detect::DetectorInput Preprocessor::input(double stamp) const {
-  detect::DetectorInput in;
+core::DetectorInput Preprocessor::input(double stamp) const {
+  core::DetectorInput in;
   in.stamp = stamp;
   in.points = out_.points;
   in.cloud = last_was_3d_ ? &out_.cloud : nullptr;

@@ -16,7 +16,7 @@
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
 #include "rownav/core/scan2d.hpp"
-#include "rownav/detect/row_detector.hpp"
+#include "rownav/core/detector_input.hpp"
 #include "rownav/detect/row_profile.hpp"
 #include "rownav/preprocess/crop_box.hpp"
 #include "rownav/preprocess/ground.hpp"
@@ -77,7 +77,7 @@ class Preprocessor {
   /// 2D points in the base frame (a scan already converted): crop and 2D filters only.
   const Preprocessed& run(std::span<const Eigen::Vector2f> points_base);
   /// The detector input for the last run (points, and the cloud for 3D frames).
-  detect::DetectorInput input(double stamp) const;
+  core::DetectorInput input(double stamp) const;
   const PreprocessConfig& config() const { return config_; }
   /// The ground estimate of the last 3D frame (height-above-ground function).
   const GroundEstimator& ground() const { return ground_; }
