@@ -127,7 +127,7 @@ std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
       return std::nullopt;  // late or not finite
     last_odom_stamp_ = s.stamp;
     if (!started_) return std::nullopt;
-    return mission_.gate(stack_->command(s.stamp).cmd);
+    return mission_.gate(command_at(s.stamp).cmd);
   } catch (const std::exception&) {
     return core::Twist2{};  // a stop, to be safe
   }
@@ -140,7 +140,7 @@ TickResult RowNavCore::tick(double stamp) {
     r.health = navigate::InputHealth::lidar_stale;
     return r;
   }
-  navigate::NavCommand c = stack_->command(stamp);
+  navigate::NavCommand c = command_at(stamp);
   r.cmd = mission_.gate(c.cmd);
   // Held: the LiDAR goes stale on purpose (frames held back), no warning for that.
   if (!mission_.running())
@@ -156,14 +156,20 @@ TickResult RowNavCore::tick(double stamp) {
   return r;
 }
 
+navigate::NavCommand RowNavCore::command_at(double stamp) {
+  if (last_command_stamp_ && std::isfinite(stamp)) stamp = std::max(stamp, *last_command_stamp_);
+  if (std::isfinite(stamp)) last_command_stamp_ = stamp;
+  return stack_->command(stamp);
+}
+
 FrameResult RowNavCore::frame(double stamp) {
   if (!last_odom_stamp_) {
-    stack_->command(stamp);  // the frame is consumed (detected), the command stays zero
+    command_at(stamp);  // the frame is consumed (detected), the command stays zero
     return fail(stamp, "no odometry received yet");
   }
   // The stack works at the newest instant known (as the simulator loop does); the tracker gets
   // the pose at the start of the sweep (the frame stamp).
-  navigate::NavCommand c = stack_->command(std::max(stamp, *last_odom_stamp_));
+  navigate::NavCommand c = command_at(std::max(stamp, *last_odom_stamp_));
   if (!c.frame) return fail(stamp, "frame dropped: not newer than the last one");
   if (!c.frame->tracking)
     return fail(stamp, "no odometry at the frame stamp (frame " + std::to_string(stamp) +

@@ -97,6 +97,10 @@ class RowNavCore {
   FrameResult frame(double stamp);
   FrameResult fail(double stamp, std::string why);
   FrameResult held(double stamp) const;
+  /// NavStack::command at `stamp`, or at the newest instant already commanded when that is
+  /// later: the watchdog timer (ros::Time::now()) may run ahead of the odometry, and a frame
+  /// commanded before it was answered as a late command and never published.
+  navigate::NavCommand command_at(double stamp);
 
   StackSetup setup_;
   std::unique_ptr<navigate::NavStack> stack_;
@@ -104,6 +108,7 @@ class RowNavCore {
   NavSatConverter navsat_;
   bool mount_set_ = false, started_ = false;
   std::optional<double> last_odom_stamp_;
+  std::optional<double> last_command_stamp_;  // [s] newest stamp NavStack::command was given
 };
 
 }  // namespace rownav::ros_bridge
