@@ -34,6 +34,7 @@ void ModelFilterConfig::validate() const {
   core::check(init_max_distance > init_min_distance, "init_max_distance",
               "must be > init_min_distance");
   core::check_non_negative(init_spacing_ratio, "init_spacing_ratio");
+  core::check_range(init_frame_ratio, 0.0, 1.0, "init_frame_ratio");
   core::check_positive(max_slope_change, "max_slope_change");
   core::check_positive(max_offset_change, "max_offset_change");
   core::check_positive(spacing_tolerance, "spacing_tolerance");
@@ -76,6 +77,25 @@ double ModelFilterTracker::init_max() const {
   // Only the spacing measured over accepted frames: one frame's rows can skip a row (two rows
   // 10 m apart read as a 10 m spacing and would let the next row in).
   return std::max(config_.init_max_distance, config_.init_spacing_ratio * measured_spacing());
+}
+
+double ModelFilterTracker::init_max(const core::RowObservation& obs) const {
+  if (measured_spacing() > 0.0) return init_max();
+  // Issue 10: a 6.4 m orchard's corridor rows stand 3.2 m away, outside the paper's 3 m window,
+  // and no spacing is measured before a first row is accepted: the robot never started. The
+  // narrowest gap between adjacent rows of this frame is at most the spacing (a row the
+  // detector missed widens a gap), so the window never reaches the next corridor's row.
+  std::vector<double> offsets;
+  for (const auto& r : obs.rows)
+    if (finite_row(r)) offsets.push_back(r.offset);
+  std::sort(offsets.begin(), offsets.end());
+  double narrowest = 0.0;
+  for (std::size_t i = 1; i < offsets.size(); ++i) {
+    const double gap = offsets[i] - offsets[i - 1];
+    if (gap > 2.0 * config_.init_min_distance && (narrowest == 0.0 || gap < narrowest))
+      narrowest = gap;
+  }
+  return std::max(init_max(), config_.init_frame_ratio * narrowest);
 }
 
 double ModelFilterTracker::box_half_width() const {
@@ -127,7 +147,7 @@ bool ModelFilterTracker::consistent(const SlopeIntercept& c, int s) const {
 bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
   // Model filter 1 + 2 (Malavazi 2018 Fig. 9): per side the nearest row inside its box.
   int pick[2] = {-1, -1};
-  const double window = init_max();
+  const double window = init_max(obs);
   for (int s = 0; s < 2; ++s)
     for (std::size_t i = 0; i < obs.rows.size(); ++i) {
       const auto& r = obs.rows[i];

@@ -35,6 +35,12 @@ struct ModelFilterConfig {
   /// reaches at least this fraction of it (issue 10: the paper's 3 m fit its vegetable beds; a
   /// corridor row of a 5 m orchard stands up to ~4 m away, the next row a spacing farther)
   double init_spacing_ratio = 0.9;
+  /// [-] before any spacing is measured (the start, after a turn), the window reaches at least
+  /// this fraction of the narrowest gap between the frame's adjacent rows: the corridor's rows
+  /// stand half a spacing away plus the robot's offset (issue 10: a 6.4 m orchard's rows at
+  /// 3.2 m were outside the 3 m window, the robot never started; 0.9 let a 5 m orchard's next
+  /// row in after a turn)
+  double init_frame_ratio = 0.6;
   double max_slope_change = 0.1;   ///< [-] |a - a_prev| above this: inconsistent (rownav)
   double max_offset_change = 0.25;  ///< [m] |b - b_prev| above this: inconsistent (rownav)
   /// [m] |b_l - b_r - mean width| above this: inconsistent (b_l - b_r: the width between the
@@ -60,6 +66,7 @@ struct ModelFilterConfig {
     v("init_min_distance", s.init_min_distance);
     v("init_max_distance", s.init_max_distance);
     v("init_spacing_ratio", s.init_spacing_ratio);
+    v("init_frame_ratio", s.init_frame_ratio);
     v("max_slope_change", s.max_slope_change);
     v("max_offset_change", s.max_offset_change);
     v("spacing_tolerance", s.spacing_tolerance);
@@ -99,6 +106,10 @@ class ModelFilterTracker : public TrackerBase {
   double mean_spacing() const;
   /// [m] initialisation window's far edge (init_max_distance, or more with the spacing measured).
   double init_max() const;
+  /// [m] the same for one frame: before any spacing is measured, init_frame_ratio x the
+  /// narrowest gap between this frame's adjacent rows (a missing row widens a gap, never
+  /// narrows it), so that a field wider than 2 x init_max_distance can be entered at all.
+  double init_max(const core::RowObservation& obs) const;
   /// [m] the data-filter box half width in effect (box_spacing_ratio x the measured spacing).
   double box_half_width() const;
 
