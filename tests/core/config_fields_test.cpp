@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "common/field_names.hpp"
 #include "rownav/core/config_fields.hpp"
 #include "rownav/sim/field.hpp"
 
@@ -32,13 +33,7 @@ struct Outer {
   }
 };
 
-struct NameCollector {
-  std::vector<std::string> names;
-  template <class T>
-  void operator()(std::string_view name, T&) {
-    names.emplace_back(name);
-  }
-};
+using test::NameCollector;
 
 TEST(ConfigFields, VisitsFieldsInOrderOnConstAndMutable) {
   static_assert(HasFields<Outer>);

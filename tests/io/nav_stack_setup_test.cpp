@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/field_names.hpp"
 #include "rownav/io/input_error.hpp"
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/sim/robot.hpp"
@@ -19,13 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Names {
-  std::vector<std::string> names;
-  template <class T>
-  void operator()(std::string_view name, T&) {
-    names.emplace_back(name);
-  }
-};
+using Names = test::NameCollector;
 
 TEST(NavStackSetup, TheSkippedRobotKeysAreExactlyTheSimulatorsOnes) {
   sim::RobotConfig robot;
