@@ -27,7 +27,7 @@ inline const BenchVineyard& bench_vineyard() {
     auto* out = new BenchVineyard;  // lives as long as the benchmark process
     out->field = sim::generate_field(f);
     out->caster = std::make_unique<sim::RayCaster>(out->field.mesh);
-    const auto& centre = sim::FieldTruth(out->field).corridor_centre(0, 9);
+    const auto centre = sim::FieldTruth(out->field).corridor_centre(0, 9);  // a copy: the truth is a temporary
     const Eigen::Vector2d a = centre[centre.size() / 2], b = centre[centre.size() / 2 + 1];
     const Eigen::Vector2d d = (b - a).normalized();
     const double z = out->field.terrain.height(a.x(), a.y());

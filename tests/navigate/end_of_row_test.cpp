@@ -177,7 +177,7 @@ TEST(EndOfRow, BadConfigNamesTheField) {
 // One OS1-16 sweep in corridor 2 of a generated vineyard, `distance` [m] before the row end, in
 // the base frame.
 core::PointCloud sim_frame(const sim::Field& field, const sim::RayCaster& caster, double distance) {
-  const auto& centre = sim::FieldTruth(field).corridor_centre(0, 2);
+  const auto centre = sim::FieldTruth(field).corridor_centre(0, 2);  // a copy: the truth is a temporary
   const Eigen::Vector2d end = centre.back();
   const Eigen::Vector2d tangent = (centre.back() - centre[centre.size() - 2]).normalized();
   const Eigen::Vector2d xy = end - distance * tangent;

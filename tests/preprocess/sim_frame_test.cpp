@@ -28,7 +28,7 @@ Frame simulate(double slope_x_deg, double slope_y_deg) {
   f.terrain.slope_y_deg = slope_y_deg;
   const sim::Field field = sim::generate_field(f);
   const sim::RayCaster caster(field.mesh);
-  const auto& centre = sim::FieldTruth(field).corridor_centre(0, 2);
+  const auto centre = sim::FieldTruth(field).corridor_centre(0, 2);  // a copy: the truth is a temporary
   const Eigen::Vector2d xy = centre[centre.size() / 2];
   const double z = field.terrain.height(xy.x(), xy.y());
   const sim::PoseAt pose_at = [&](double) {

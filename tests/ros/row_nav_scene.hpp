@@ -28,7 +28,7 @@ struct Scene {
   sim::Field field;
   Pose2 pose;
   Scene(double offset, double yaw_error) : field(make_field()) {
-    const auto& c = sim::FieldTruth(field).corridor_centre(0, 2);
+    const auto c = sim::FieldTruth(field).corridor_centre(0, 2);  // a copy: the truth is a temporary
     const std::size_t i = c.size() / 3;
     const Eigen::Vector2d d = (c[i + 1] - c[i]).normalized(), n(-d.y(), d.x());
     const Eigen::Vector2d p = c[i] + offset * n;
