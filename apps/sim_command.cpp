@@ -73,16 +73,19 @@ void run_sim(const SimArgs& a) {
   if (!a.mcap.empty()) mcap.emplace(a.mcap, a.overwrite);
   if (!a.bag.empty()) bag.emplace(a.bag, a.overwrite);
   writer.commit();
-  if (mcap) {
-    io::write_mcap_recording(io::read_recording(a.out), mcap->staging());
-    mcap->commit();
-    std::cout << "ROS 2 bag: " << a.mcap.string() << "\n";
-  }
-  if (bag) {
-    io::write_bag_recording(io::read_recording(a.out), bag->staging(), a.bag);
-    bag->commit();
-    std::cout << (a.bag.extension() == ".mcap" ? "ROS 2 bag: " : "ROS 1 bag: ") << a.bag.string()
-              << "\n";
+  if (mcap || bag) {
+    const io::Recording rec = io::read_recording(a.out);  // once for both bags
+    if (mcap) {
+      io::write_mcap_recording(rec, mcap->staging());
+      mcap->commit();
+      std::cout << "ROS 2 bag: " << a.mcap.string() << "\n";
+    }
+    if (bag) {
+      io::write_bag_recording(rec, bag->staging(), a.bag);
+      bag->commit();
+      std::cout << (io::is_mcap_file(a.bag) ? "ROS 2 bag: " : "ROS 1 bag: ") << a.bag.string()
+                << "\n";
+    }
   }
 
   PictureContent pic;

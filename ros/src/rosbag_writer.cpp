@@ -19,13 +19,6 @@ namespace rownav::ros_bridge {
 
 namespace {
 
-enum class Stream { cloud, scan, imu, odom };
-struct Entry {
-  double stamp;
-  Stream stream;
-  std::size_t index;
-};
-
 // The LiDAR mount of the manifest's sensors (a rownav recording), if it has one.
 std::optional<Eigen::Isometry3d> lidar_mount(const io::Recording& rec) {
   if (!rec.manifest || !rec.manifest.IsMap() || !rec.manifest["sensors"]) return std::nullopt;
@@ -34,20 +27,6 @@ std::optional<Eigen::Isometry3d> lidar_mount(const io::Recording& rec) {
   } catch (const std::exception&) {
     return std::nullopt;  // a manifest from elsewhere: no mount to publish
   }
-}
-
-std::vector<Entry> entries_by_stamp(const io::Recording& rec) {
-  std::vector<Entry> e;
-  for (std::size_t i = 0; i < rec.cloud_count(); ++i)
-    e.push_back({rec.cloud_stamps[i], Stream::cloud, i});
-  for (std::size_t i = 0; i < rec.scans.size(); ++i)
-    e.push_back({rec.scans[i].stamp, Stream::scan, i});
-  for (std::size_t i = 0; i < rec.imu.size(); ++i) e.push_back({rec.imu[i].stamp, Stream::imu, i});
-  for (std::size_t i = 0; i < rec.ground_truth.size(); ++i)
-    e.push_back({rec.ground_truth[i].stamp, Stream::odom, i});
-  std::stable_sort(e.begin(), e.end(),
-                   [](const Entry& a, const Entry& b) { return a.stamp < b.stamp; });
-  return e;
 }
 
 // A bag's record times start at ros::TIME_MIN (1 ns): a recording starting at 0 s keeps its
@@ -71,22 +50,22 @@ void write_header(rosbag::Bag& bag, const io::Recording& rec, double t0) {
   }
 }
 
-void write_entry(rosbag::Bag& bag, const io::Recording& rec, const Entry& e) {
+void write_entry(rosbag::Bag& bag, const io::Recording& rec, const io::BagEntry& e) {
   const ros::Time t = bag_time(e.stamp);
   switch (e.stream) {
-    case Stream::cloud: {
+    case io::BagStream::cloud: {
       core::PointCloud c = rec.cloud(e.index);
       c.frame_id = "lidar";
       bag.write("/points", t, to_cloud_msg(c));
       break;
     }
-    case Stream::scan:
+    case io::BagStream::scan:
       bag.write("/scan", t, to_scan_msg(rec.scans[e.index]));
       break;
-    case Stream::imu:
+    case io::BagStream::imu:
       bag.write("/imu", t, to_imu_msg(rec.imu[e.index], "base_link"));
       break;
-    case Stream::odom: {
+    case io::BagStream::odom: {
       const auto& g = rec.ground_truth[e.index];
       bag.write("/odom", t, to_odom_msg({g.stamp, g.T_world_base, g.twist, "odom", "base_link"}));
       break;
@@ -99,9 +78,9 @@ void write_entry(rosbag::Bag& bag, const io::Recording& rec, const Entry& e) {
 void write_rosbag_recording(const io::Recording& rec, const std::filesystem::path& file) {
   try {
     rosbag::Bag bag(file.string(), rosbag::bagmode::Write);
-    const std::vector<Entry> entries = entries_by_stamp(rec);
+    const std::vector<io::BagEntry> entries = io::bag_entries(rec);
     write_header(bag, rec, entries.empty() ? 0.0 : entries.front().stamp);
-    for (const Entry& e : entries) write_entry(bag, rec, e);
+    for (const io::BagEntry& e : entries) write_entry(bag, rec, e);
     bag.close();
   } catch (const rosbag::BagException& e) {
     throw io::InputError(file.string(), "", std::string("rosbag: ") + e.what());

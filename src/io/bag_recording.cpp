@@ -105,6 +105,10 @@ std::map<std::string, BagWriter>& bag_writers() {
 
 }  // namespace
 
+bool is_mcap_file(const std::filesystem::path& file) {
+  return lower_extension(file) == ".mcap";
+}
+
 bool is_bag_file(const std::filesystem::path& file) {
   const std::string ext = lower_extension(file);
   return ext == ".mcap" || ext == ".bag" || bag_readers().count(ext) > 0;
@@ -228,19 +232,19 @@ Recording read_mcap_recording(const std::filesystem::path& file, const BagTopics
   return rec;
 }
 
-namespace {
-
-/// The streams written, by channel.
-enum Stream : std::size_t { kCloud, kScan, kImu, kOdom, kStreams };
-
-/// One message to write, by stamp.
-struct Entry {
-  double stamp;
-  Stream stream;
-  std::size_t index;
-};
-
-}  // namespace
+std::vector<BagEntry> bag_entries(const Recording& rec) {
+  std::vector<BagEntry> e;
+  for (std::size_t i = 0; i < rec.cloud_count(); ++i)
+    e.push_back({rec.cloud_stamps[i], BagStream::cloud, i});
+  for (std::size_t i = 0; i < rec.scans.size(); ++i)
+    e.push_back({rec.scans[i].stamp, BagStream::scan, i});
+  for (std::size_t i = 0; i < rec.imu.size(); ++i) e.push_back({rec.imu[i].stamp, BagStream::imu, i});
+  for (std::size_t i = 0; i < rec.ground_truth.size(); ++i)
+    e.push_back({rec.ground_truth[i].stamp, BagStream::odom, i});
+  std::stable_sort(e.begin(), e.end(),
+                   [](const BagEntry& a, const BagEntry& b) { return a.stamp < b.stamp; });
+  return e;
+}
 
 void write_mcap_recording(const Recording& rec, const std::filesystem::path& file,
                           const McapWriterConfig& config, CloudTimeField time) {
@@ -250,29 +254,23 @@ void write_mcap_recording(const Recording& rec, const std::filesystem::path& fil
     e << rec.manifest;
     w.write_metadata(kMetadataName, {{kManifestKey, e.c_str()}});
   }
+  // One channel per BagStream, in its order.
+  constexpr std::size_t kStreams = 4;
   const char* types[kStreams] = {kRos2PointCloud2, kRos2LaserScan, kRos2Imu, kRos2Odometry};
   const char* topics[kStreams] = {"/points", "/scan", "/imu", "/odom"};
   std::uint16_t channel[kStreams];
   for (std::size_t s = 0; s < kStreams; ++s)
     channel[s] = w.add_channel(w.add_schema(types[s], "ros2msg", ""), topics[s], "cdr");
-  std::vector<Entry> entries;
-  for (std::size_t i = 0; i < rec.cloud_count(); ++i) entries.push_back({rec.cloud_stamps[i], kCloud, i});
-  for (std::size_t i = 0; i < rec.scans.size(); ++i) entries.push_back({rec.scans[i].stamp, kScan, i});
-  for (std::size_t i = 0; i < rec.imu.size(); ++i) entries.push_back({rec.imu[i].stamp, kImu, i});
-  for (std::size_t i = 0; i < rec.ground_truth.size(); ++i)
-    entries.push_back({rec.ground_truth[i].stamp, kOdom, i});
-  std::stable_sort(entries.begin(), entries.end(),
-                   [](const Entry& a, const Entry& b) { return a.stamp < b.stamp; });
-  for (const Entry& e : entries) {
+  for (const BagEntry& e : bag_entries(rec)) {
     std::vector<std::uint8_t> data;
-    if (e.stream == kCloud) data = encode_point_cloud2(rec.cloud(e.index), time);
-    else if (e.stream == kScan) data = encode_laser_scan(rec.scans[e.index]);
-    else if (e.stream == kImu) data = encode_imu(rec.imu[e.index]);
+    if (e.stream == BagStream::cloud) data = encode_point_cloud2(rec.cloud(e.index), time);
+    else if (e.stream == BagStream::scan) data = encode_laser_scan(rec.scans[e.index]);
+    else if (e.stream == BagStream::imu) data = encode_imu(rec.imu[e.index]);
     else {
       const sim::GroundTruth& g = rec.ground_truth[e.index];
       data = encode_odometry({g.stamp, g.T_world_base, g.twist});
     }
-    w.write(channel[e.stream], to_ns(e.stamp), data);
+    w.write(channel[static_cast<std::size_t>(e.stream)], to_ns(e.stamp), data);
   }
   w.close();
 }

@@ -9,9 +9,11 @@
 /// stores it) becomes Recording::manifest, so a converted rownav recording keeps its LiDAR mount.
 /// Writing: clouds on /points, scans on /scan, IMU on /imu and the ground-truth poses on /odom
 /// (a simulator's perfect odometry), messages in stamp order.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "rownav/io/mcap_writer.hpp"
 #include "rownav/io/recording.hpp"
@@ -28,6 +30,9 @@ struct BagTopics {
 /// the bad item.
 BagTopics parse_bag_topics(const std::string& spec);
 
+/// True for an MCAP file (".mcap", case-insensitive): a ROS 2 bag.
+bool is_mcap_file(const std::filesystem::path& file);
+
 /// True for a file the bag readers take (".mcap", ".bag"; case-insensitive).
 bool is_bag_file(const std::filesystem::path& file);
 
@@ -37,6 +42,19 @@ using BagReader =
 /// Registers `reader` for files ending in `extension` (".bag"; a null reader unregisters).
 /// Not thread-safe: call at start-up.
 void register_bag_reader(const std::string& extension, BagReader reader);
+
+/// The stream of one message a bag writer writes (written as /points, /scan, /imu, /odom).
+enum class BagStream : std::uint8_t { cloud, scan, imu, odom };
+/// One message to write: its stamp, stream and index in that stream of the Recording.
+struct BagEntry {
+  double stamp;  ///< [s]
+  BagStream stream;
+  std::size_t index;
+};
+/// Every message of `rec` a bag writer writes (clouds, scans, IMU, the ground truth as
+/// odometry), in stamp order (stable: a tie keeps that stream order). Shared by the MCAP and the
+/// ROS 1 writers so that both bags hold the same messages in the same order.
+std::vector<BagEntry> bag_entries(const Recording& rec);
 
 /// A writer of another bag format (ROS 1 `.bag`: ros/, built only with ROS): the recording to
 /// `file`, in the same streams and topics as write_mcap_recording.
