@@ -1,0 +1,138 @@
+/// @file excess_green_detector.cpp ExG segmentation, nearest colour signature, components.
+#include "rownav/vision/excess_green_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace rownav::vision {
+namespace {
+
+constexpr double kExgMin = -1.0;  // ExG = 2g - r - b of chromaticities lies in [-1, 2]
+constexpr double kExgSpan = 3.0;
+constexpr double kByteMax = 255.0;
+constexpr double kMaxRgbSum = 3.0 * kByteMax;
+constexpr std::uint8_t kNoClass = std::numeric_limits<std::uint8_t>::max();
+constexpr int kMaxClasses = 254;  // class k is stored as k + 1 in a byte, 0 = background
+
+std::uint8_t exg_to_byte(double exg) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp((exg - kExgMin) / kExgSpan, 0.0, 1.0) *
+                                               kByteMax));
+}
+
+/// Index of the class whose chromaticity is nearest (r, g), kNoClass beyond max_distance.
+std::uint8_t nearest_class(const std::vector<ExgClassConfig>& classes, double r, double g,
+                           double max_distance) {
+  std::uint8_t best = kNoClass;
+  double best_d2 = max_distance * max_distance;
+  for (std::size_t k = 0; k < classes.size(); ++k) {
+    const double dr = r - classes[k].chromaticity.x(), dg = g - classes[k].chromaticity.y();
+    const double d2 = dr * dr + dg * dg;
+    if (d2 <= best_d2) {
+      best_d2 = d2;
+      best = static_cast<std::uint8_t>(k);
+    }
+  }
+  return best;
+}
+
+/// Boxes of the connected components of `mask` (8-connected) into out, with class `k`.
+void components_to_boxes(const cv::Mat& mask, int k, const ExcessGreenDetectorConfig& c,
+                         std::vector<Detection>& out) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  for (int i = 1; i < n; ++i) {  // 0 is the background
+    const int area = stats.at<int>(i, cv::CC_STAT_AREA);
+    if (area < c.min_area_px) continue;
+    const int u = stats.at<int>(i, cv::CC_STAT_LEFT), v = stats.at<int>(i, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+    Detection d;
+    d.u_min = static_cast<float>(std::max(0, u - c.box_margin_px));
+    d.v_min = static_cast<float>(std::max(0, v - c.box_margin_px));
+    d.u_max = static_cast<float>(std::min(mask.cols, u + w + c.box_margin_px));
+    d.v_max = static_cast<float>(std::min(mask.rows, v + h + c.box_margin_px));
+    d.class_id = k;
+    d.score = static_cast<float>(area) / static_cast<float>(w * h);
+    out.push_back(d);
+  }
+}
+
+}  // namespace
+
+void ExgClassConfig::validate() const {
+  core::check(chromaticity.allFinite() && (chromaticity.array() >= 0.0).all() &&
+                  chromaticity.sum() <= 1.0,
+              "chromaticity", "r, g must be >= 0 with r + g <= 1");
+}
+
+void ExcessGreenDetectorConfig::validate() const {
+  core::check(!classes.empty() && classes.size() <= static_cast<std::size_t>(kMaxClasses),
+              "classes", "must list 1 to 254 classes");
+  for (const auto& k : classes) core::validate_nested(k, "classes");
+  core::check_positive(max_class_distance, "max_class_distance");
+  core::check_range(exg_threshold, kExgMin, kExgMin + kExgSpan, "exg_threshold");
+  core::check_range(min_brightness, 0.0, 1.0, "min_brightness");
+  core::check_positive(open_kernel_px, "open_kernel_px");
+  core::check_positive(close_kernel_px, "close_kernel_px");
+  core::check_positive(min_area_px, "min_area_px");
+  core::check_non_negative(box_margin_px, "box_margin_px");
+}
+
+ExcessGreenDetector::ExcessGreenDetector(const ExcessGreenDetectorConfig& config)
+    : config_(config) {
+  config_.validate();
+}
+
+void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Detection>& out) {
+  out.clear();
+  if (!image.valid()) return;
+  const auto n = static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height());
+  exg_.resize(n);
+  exg8_.resize(n);
+  pixel_class_.resize(n);
+  std::vector<std::uint8_t> nearest(n);
+  const double dark = config_.min_brightness * kMaxRgbSum;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* p = image.rgb.data() + 3 * i;
+    const double sum = double(p[0]) + double(p[1]) + double(p[2]);
+    if (sum < dark || sum <= 0.0) {  // no reliable chromaticity
+      exg_[i] = std::numeric_limits<float>::quiet_NaN();
+      exg8_[i] = 0;
+      nearest[i] = kNoClass;
+      continue;
+    }
+    const double r = p[0] / sum, g = p[1] / sum, b = p[2] / sum;
+    exg_[i] = static_cast<float>(2.0 * g - r - b);  // Woebbecke 1995 excess green
+    exg8_[i] = exg_to_byte(exg_[i]);
+    nearest[i] = nearest_class(config_.classes, r, g, config_.max_class_distance);
+  }
+  try {
+    double t = config_.exg_threshold;
+    if (config_.otsu) {
+      cv::Mat src(image.height(), image.width(), CV_8UC1, exg8_.data()), dst;
+      const double t8 = cv::threshold(src, dst, 0.0, kByteMax, cv::THRESH_BINARY | cv::THRESH_OTSU);
+      t = std::max(t, kExgMin + kExgSpan * t8 / kByteMax);
+    }
+    last_threshold_ = t;
+    for (std::size_t i = 0; i < n; ++i)
+      pixel_class_[i] = (exg_[i] > t && nearest[i] != kNoClass) ? nearest[i] + 1 : 0;
+    const cv::Mat classes(image.height(), image.width(), CV_8UC1, pixel_class_.data());
+    const cv::Mat open = cv::getStructuringElement(
+        cv::MORPH_ELLIPSE, cv::Size(config_.open_kernel_px, config_.open_kernel_px));
+    const cv::Mat close = cv::getStructuringElement(
+        cv::MORPH_ELLIPSE, cv::Size(config_.close_kernel_px, config_.close_kernel_px));
+    cv::Mat mask;
+    for (std::size_t k = 0; k < config_.classes.size(); ++k) {
+      cv::compare(classes, cv::Scalar(static_cast<double>(k + 1)), mask, cv::CMP_EQ);
+      cv::morphologyEx(mask, mask, cv::MORPH_OPEN, open);
+      cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, close);
+      components_to_boxes(mask, static_cast<int>(k), config_, out);
+    }
+  } catch (const cv::Exception&) {
+    out.clear();  // per-frame code does not throw: no boxes this frame
+  }
+}
+
+}  // namespace rownav::vision
