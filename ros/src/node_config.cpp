@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "rownav/io/localize_setup.hpp"
 #include "rownav/io/mission_io.hpp"
 #include "rownav/io/yaml_config.hpp"
 
@@ -13,6 +14,9 @@ namespace rownav::ros_bridge {
 void NodeConfig::validate() const {
   core::check(input == "cloud" || input == "scan", "input",
               "must be cloud or scan (got '" + input + "')");
+  core::check(odometry == "odom" || odometry == "joint_states", "odometry",
+              "must be odom or joint_states (got '" + odometry + "')");
+  core::check(!odom_frame.empty(), "odom_frame", "must not be empty");
   core::check_non_negative(corridor_count, "corridor_count");
   core::check(!base_frame.empty(), "base_frame", "must not be empty");
   core::check(lidar_mount.empty() || lidar_mount.size() == 6, "lidar_mount",
@@ -22,6 +26,7 @@ void NodeConfig::validate() const {
   core::check_positive(nominal_frame_period, "nominal_frame_period");
   core::check_range(watchdog_rate, 1.0, 1000.0, "watchdog_rate");
   core::validate_nested(gnss, "gnss");
+  core::validate_nested(wheels, "wheels");
 }
 
 namespace {
@@ -52,8 +57,10 @@ StackSetup load_stack(const NodeConfig& node) {
   // Footprint and limits exactly as `rownav run` derives them from the same robot file.
   navigate::NavStackConfig stack;
   // The robot file as the stack knows it (core::RobotSpec): the node links no simulator.
-  io::nav_stack_robot_limits(
-      stack, node.robot.empty() ? core::RobotSpec{} : io::load_robot_spec(node.robot));
+  const core::RobotSpec spec =
+      node.robot.empty() ? core::RobotSpec{} : io::load_robot_spec(node.robot);
+  io::nav_stack_robot_limits(stack, spec);
+  s.localizer = io::localizer_config_for(spec, node.wheels.ticks_per_rev);
   s.robot = stack.robot;
   s.limits = stack.limits;
   s.limits.validate();

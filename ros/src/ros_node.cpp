@@ -51,7 +51,15 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     frame_sub_ = nh_.subscribe("cloud", 2, &RosNode::on_cloud, this);
   else
     frame_sub_ = nh_.subscribe("scan", 2, &RosNode::on_scan, this);
-  odom_sub_ = nh_.subscribe("odom", 50, &RosNode::on_odom, this);
+  if (c.odometry == "joint_states") {
+    odom_sub_ = nh_.subscribe("joint_states", 100, &RosNode::on_joints, this);
+    if (c.publish_tf) {
+      tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+      odom_pub_ = pnh_.advertise<nav_msgs::Odometry>("odom", 50);
+    }
+  } else {
+    odom_sub_ = nh_.subscribe("odom", 50, &RosNode::on_odom, this);
+  }
   // Always: the IMU levels each sweep by gravity; its yaw rate is used only with ~use_imu.
   imu_sub_ = nh_.subscribe("imu", 200, &RosNode::on_imu, this);
   fix_sub_ = nh_.subscribe("fix", 10, &RosNode::on_fix, this);
@@ -65,8 +73,9 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   std_msgs::String initial;
   initial.data = last_state_ = core_->state_name(core_->navigator().state());
   state_pub_.publish(initial);
-  ROS_INFO("rownav_node: %s input, detector %s, tracker %s, controller %s, %zu corridors, %s, %s",
-           c.input.c_str(), c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
+  ROS_INFO("rownav_node: %s input, pose from %s, detector %s, tracker %s, controller %s, %zu corridors, %s, %s",
+           c.input.c_str(), c.odometry == "odom" ? "odom" : "joint_states + imu (own EKF)",
+           c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
            core_->setup().order.size(), enabled_ ? "driving" : "observing only",
            c.autostart ? "mission running" : "waiting for ~start");
 }
@@ -163,6 +172,24 @@ void RosNode::on_odom(const nav_msgs::Odometry::ConstPtr& msg) {
     ROS_WARN_THROTTLE(1.0, "rownav_node: odometry dropped: %s", e.what());
     publish_stop();
   }
+}
+
+void RosNode::on_joints(const sensor_msgs::JointState::ConstPtr& msg) {
+  const JointAnswer a = core_->on_joints(*msg);
+  if (a.cmd) publish_cmd(*a.cmd);
+  // Another joint group on the same topic is normal; anything else is worth a warning.
+  if (!a.skipped.empty() && a.skipped != "no wheel joint in the message")
+    ROS_WARN_THROTTLE(1.0, "rownav_node: joint states skipped: %s", a.skipped.c_str());
+  if (a.skipped.empty()) publish_own_odometry(to_sec(msg->header.stamp));
+}
+
+void RosNode::publish_own_odometry(double stamp) {
+  if (!tf_broadcaster_) return;
+  const auto o = core_->own_odometry(stamp);
+  if (!o) return;
+  Eigen::Isometry3d T = o->T_odom_base.to_isometry();
+  tf_broadcaster_->sendTransform(to_transform_msg(stamp, o->frame_id, o->child_frame_id, T));
+  odom_pub_.publish(to_odom_msg(*o));
 }
 
 void RosNode::on_imu(const sensor_msgs::Imu::ConstPtr& msg) {

@@ -22,7 +22,11 @@ navigate::NavStackConfig stack_config(const StackSetup& s) {
   c.end_of_row = s.end_of_row;
   c.robot = s.robot;
   c.limits = s.limits;
-  c.stack.odometry = navigate::OdometryInput::external;
+  // The robot's odometry, or rownav's own wheel odometry + IMU EKF on its joint states (the
+  // localizer `rownav run` measures, from the same robot file).
+  const bool own = s.node.odometry == "joint_states";
+  c.stack.odometry = own ? navigate::OdometryInput::wheels_imu : navigate::OdometryInput::external;
+  c.localizer = s.localizer;
   c.stack.gyro_yaw_rate = s.node.use_imu;
   c.stack.odometry_history = s.node.odom_history;
   c.stack.max_extrapolation = s.node.max_extrapolation;
@@ -48,7 +52,8 @@ RowNavCore::RowNavCore(StackSetup setup)
     : setup_(std::move(setup)),
       stack_(make_stack(setup_, Eigen::Isometry3d::Identity())),
       mission_(setup_.node.autostart),
-      navsat_(setup_.node.gnss) {}
+      navsat_(setup_.node.gnss),
+      joints_(setup_.node.wheels) {}
 
 RowNavCore::~RowNavCore() = default;
 
@@ -121,6 +126,7 @@ NavSatConversion RowNavCore::on_fix(const sensor_msgs::NavSatFix& msg) {
 }
 
 std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
+  if (setup_.node.odometry != "odom") return std::nullopt;  // the joint states are the source
   try {
     const OdomSample s = to_odom(msg);
     if (!stack_->on_odometry({s.stamp, s.T_odom_base, s.twist}))
@@ -131,6 +137,40 @@ std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
   } catch (const std::exception&) {
     return core::Twist2{};  // a stop, to be safe
   }
+}
+
+JointAnswer RowNavCore::on_joints(const sensor_msgs::JointState& msg) {
+  JointAnswer a;
+  if (setup_.node.odometry != "joint_states") {
+    a.skipped = "the pose source is nav_msgs/Odometry (~odometry: odom)";
+    return a;
+  }
+  try {
+    JointConversion c = joints_.convert(msg);
+    if (!c.sample) {
+      a.skipped = std::move(c.skipped);
+      return a;
+    }
+    const std::uint64_t accepted = stack_->stats().encoders;
+    stack_->on_encoders(*c.sample);
+    if (stack_->stats().encoders == accepted) {
+      a.skipped = "wheel sample not newer than the last one";
+      return a;
+    }
+    last_odom_stamp_ = c.sample->stamp;
+    if (started_) a.cmd = mission_.gate(command_at(c.sample->stamp).cmd);
+  } catch (const std::exception& e) {
+    a.cmd = core::Twist2{};  // a stop, to be safe
+    a.skipped = e.what();
+  }
+  return a;
+}
+
+std::optional<OdomSample> RowNavCore::own_odometry(double stamp) const {
+  if (setup_.node.odometry != "joint_states" || !last_odom_stamp_) return std::nullopt;
+  const auto T = stack_->T_odom_base(stamp);
+  if (!T) return std::nullopt;
+  return OdomSample{stamp, *T, stack_->twist(), setup_.node.odom_frame, setup_.node.base_frame};
 }
 
 TickResult RowNavCore::tick(double stamp) {

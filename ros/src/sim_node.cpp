@@ -66,6 +66,8 @@ class SimNode::Sink : public sim::SimSink {
     n_.cloud_pub_.publish(msg);
   }
   void on_encoders(const core::WheelEncoderSample& s) override {
+    n_.publish_joints(s);
+    if (!n_.config_.publish_odometry) return;
     n_.odometry_->add_encoders(s);
     const auto e = n_.odometry_->latest();
     if (!e.valid) return;
@@ -76,7 +78,7 @@ class SimNode::Sink : public sim::SimSink {
         to_transform_msg(e.stamp, c.odom_frame, c.base_frame, e.T_odom_base.to_isometry()));
   }
   void on_imu(const core::ImuSample& s) override {
-    n_.odometry_->add_imu(s);
+    if (n_.config_.publish_odometry) n_.odometry_->add_imu(s);
     n_.imu_pub_.publish(to_imu_msg(s, n_.config_.base_frame));
   }
   void on_ground_truth(const sim::GroundTruth& g) override {
@@ -105,12 +107,14 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
       io::mission_start(truth, order, mission.block, mission.first_turn, c.lead_in);
   sim_ = std::make_unique<sim::Simulator>(*field_, robot, sensors, start);
   odometry_.emplace(io::localizer_config_for(robot, sensors.encoders.ticks_per_rev));
+  ticks_per_rev_ = sensors.encoders.ticks_per_rev;
   sink_ = std::make_unique<Sink>(*this);
   ros::param::set("/use_sim_time", true);  // the nodes started after this one follow /clock
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud2>("cloud", 2);
   odom_pub_ = nh_.advertise<nav_msgs::Odometry>("odom", 50);
   imu_pub_ = nh_.advertise<sensor_msgs::Imu>("imu", 200);
+  joints_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 100);
   truth_pub_ = pnh_.advertise<nav_msgs::Odometry>("ground_truth", 20);
   state_sub_ = nh_.subscribe(c.state_topic, 10, &SimNode::on_state, this);
   ros::NodeHandle answers(nh_);
@@ -130,6 +134,16 @@ SimNode::~SimNode() {
   if (answer_spinner_) answer_spinner_->stop();
   cmd_sub_.shutdown();
   tracking_sub_.shutdown();
+}
+
+void SimNode::publish_joints(const core::WheelEncoderSample& s) {
+  sensor_msgs::JointState j;
+  j.header.stamp.fromSec(s.stamp);
+  j.name = {config_.left_wheel_joint, config_.right_wheel_joint};
+  const double rad_per_tick = 2.0 * M_PI / ticks_per_rev_;
+  j.position = {rad_per_tick * static_cast<double>(s.left_ticks),
+                rad_per_tick * static_cast<double>(s.right_ticks)};
+  joints_pub_.publish(j);
 }
 
 void SimNode::on_cmd(const geometry_msgs::Twist::ConstPtr& msg) {

@@ -4,6 +4,7 @@
 // two-corridor mission of a small vineyard through cmd_vel, and the run matches `rownav run` on
 // the same field and mission (the same stack in one process, no transport).
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <regex>
@@ -28,36 +29,55 @@ double json_number(const std::string& text, const std::string& key) {
   return std::regex_search(text, m, re) ? std::stod(m[1]) : std::nan("");
 }
 
-TEST_F(NodeAgainstAMaster, TheSimNodeDrivesRownavNodeThroughTwoCorridorsLikeRownavRun) {
-  ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
-  const auto dir = home_.path();
+/// A small vineyard driven by rownav_sim_node and rownav_node at real time, as a user would
+/// start them on a robot (rownav_node's mount from tf); returns the sim node's result JSON.
+struct MasterRun {
+  std::string result, sim_log, node_log;
+  int sim_code = -1;
+};
+
+MasterRun run_against_master(const std::string& env, const std::filesystem::path& dir,
+                             const std::string& mission, const std::string& sim_args,
+                             const std::string& node_args) {
   std::ofstream(dir / "field.yaml") << "kind: vineyard\nname: ros_small\nseed: 3\nvineyard:\n"
                                        "  rows: 4\n  row_length: 15.0\n  row_spacing: 1.8\n";
   const std::string field = (dir / "field.yaml").string(), result = (dir / "result.json").string();
   const std::string robot = kConfig + "/robots/skid_steer.yaml";
-  const std::string mission = kConfig + "/missions/two_corridors.yaml";
   const std::string sim_log = (dir / "sim.log").string(), node_log = (dir / "node.log").string();
   // Real time, as on a robot (at 3x the transport's delay, in simulated time, tripled the
   // lateral error: 0.09 m against 0.04 m at 2x).
-  Background sim(env_ + "exec '" ROWNAV_SIM_NODE_BINARY "' _field:=" + field + " _robot:=" +
+  Background sim(env + "exec '" ROWNAV_SIM_NODE_BINARY "' _field:=" + field + " _robot:=" +
                  robot + " _sensors:=" + kConfig + "/sensors/os1_16.yaml _mission:=" + mission +
-                 " _rate_factor:=1.0 _time_limit:=200 _result:=" + result + " > '" + sim_log +
-                 "' 2>&1");
+                 " _rate_factor:=1.0 _time_limit:=200 _result:=" + result + " " + sim_args +
+                 " > '" + sim_log + "' 2>&1");
   // rownav_node follows /clock only when /use_sim_time is set before it starts: the sim node
   // sets it, then advertises /clock.
-  for (int i = 0; i < 100 && shell(env_ + "rostopic list 2>/dev/null").find("/clock") ==
+  for (int i = 0; i < 100 && shell(env + "rostopic list 2>/dev/null").find("/clock") ==
                                  std::string::npos;
        ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  Background node(env_ + "exec '" ROWNAV_NODE_BINARY "' _robot:=" + robot + " _detect_config:=" +
+  Background node(env + "exec '" ROWNAV_NODE_BINARY "' _robot:=" + robot + " _detect_config:=" +
                   kConfig + "/detect/vineyard.yaml _mission:=" + mission +
-                  " _corridor_count:=3 > '" + node_log + "' 2>&1");
+                  " _corridor_count:=3 " + node_args + " > '" + node_log + "' 2>&1");
   for (int i = 0; i < 1500 && sim.running(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  ASSERT_FALSE(sim.running()) << "no end within 150 s\n" << read_file(sim_log);
-  EXPECT_EQ(sim.stop(), 0) << read_file(sim_log);  // 0: the follower's state was done
-  const std::string ros = read_file(result);
-  SCOPED_TRACE(ros + "\n" + read_file(node_log));
+  MasterRun r;
+  if (!sim.running()) r.sim_code = sim.stop();
+  r.result = read_file(result);
+  r.sim_log = read_file(sim_log);
+  r.node_log = read_file(node_log);
+  return r;
+}
+
+TEST_F(NodeAgainstAMaster, TheSimNodeDrivesRownavNodeThroughTwoCorridorsLikeRownavRun) {
+  ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
+  const auto dir = home_.path();
+  const std::string mission = kConfig + "/missions/two_corridors.yaml";
+  const MasterRun m = run_against_master(env_, dir, mission, "", "");
+  ASSERT_NE(m.sim_code, -1) << "no end within 150 s\n" << m.sim_log;
+  EXPECT_EQ(m.sim_code, 0) << m.sim_log;  // 0: the follower's state was done
+  const std::string& ros = m.result;
+  SCOPED_TRACE(ros + "\n" + m.node_log);
   EXPECT_NE(ros.find("\"state\": \"done\""), std::string::npos);
   EXPECT_NE(ros.find("\"corridors\": [0, 1]"), std::string::npos);
   EXPECT_EQ(json_number(ros, "plants_crushed"), 0.0);
@@ -69,6 +89,8 @@ TEST_F(NodeAgainstAMaster, TheSimNodeDrivesRownavNodeThroughTwoCorridorsLikeRown
   EXPECT_GT(json_number(ros, "answered_frames"), 0.9 * 10.0 * json_number(ros, "sim_time"));
   EXPECT_GT(json_number(ros, "latency_median_ms"), 0.0);
 
+  const std::string field = (dir / "field.yaml").string();
+  const std::string robot = kConfig + "/robots/skid_steer.yaml";
   const auto run = rownav::test::rownav(dir, "run --field " + field + " --robot " + robot +
                                                   " --sensor " + kConfig +
                                                   "/sensors/os1_16.yaml --mission " + mission +
@@ -79,6 +101,28 @@ TEST_F(NodeAgainstAMaster, TheSimNodeDrivesRownavNodeThroughTwoCorridorsLikeRown
   // Same mission time within 3 s (measured 64.5-64.8 s over ROS, 64.3 s in one process: the
   // transport's delay and the node's external odometry instead of the stack's own EKF).
   EXPECT_NEAR(json_number(ros, "sim_time"), json_number(cli, "sim_time"), 3.0);
+}
+
+// A robot that publishes wheel joint states instead of odometry: rownav_node runs its own wheel
+// odometry + IMU EKF (the localizer `rownav run` measures) and broadcasts odom -> base_link
+// itself; the sim node publishes no odometry then. One corridor (about 20 s) to keep make test
+// short: the two-corridor mission above covers the headland turn.
+TEST_F(NodeAgainstAMaster, RownavNodeFollowsACorridorOnWheelJointStatesAndTheImuAlone) {
+  ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
+  const MasterRun m = run_against_master(env_, home_.path(),
+                                         kConfig + "/missions/one_corridor.yaml",
+                                         "_publish_odometry:=false", "_odometry:=joint_states");
+  ASSERT_NE(m.sim_code, -1) << "no end within 150 s\n" << m.sim_log;
+  EXPECT_EQ(m.sim_code, 0) << m.sim_log;
+  const std::string& ros = m.result;
+  SCOPED_TRACE(ros + "\n" + m.node_log);
+  EXPECT_NE(ros.find("\"state\": \"done\""), std::string::npos);
+  EXPECT_NE(ros.find("\"corridors\": [0]"), std::string::npos);
+  EXPECT_EQ(json_number(ros, "plants_crushed"), 0.0);
+  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_max"), 0.15);
+  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_mean"), 0.03);
+  // Without its own odometry the node would never have moved: the sim node published none.
+  EXPECT_GT(json_number(ros, "answered_frames"), 0.9 * 10.0 * json_number(ros, "sim_time"));
 }
 
 TEST(LaunchFiles, ResolveInTheBuiltPackage) {

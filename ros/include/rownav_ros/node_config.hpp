@@ -9,6 +9,8 @@
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/mission_plan.hpp"
 #include "rownav/navigate/navigator.hpp"
+#include "rownav/localize/localizer.hpp"
+#include "rownav_ros/joint_state_conversion.hpp"
 #include "rownav_ros/navsat_conversion.hpp"
 
 namespace rownav::ros_bridge {
@@ -17,6 +19,10 @@ namespace rownav::ros_bridge {
 /// The component names and files are those of `rownav run` (--detector, --detect-config, ...).
 struct NodeConfig {
   std::string input = "cloud";           ///< "cloud" (PointCloud2 on `cloud`) or "scan" (`scan`)
+  /// pose source: "odom" (the robot's nav_msgs/Odometry on `odom`) or "joint_states" (its wheel
+  /// joints, sensor_msgs/JointState on `joint_states`, + the IMU on `imu` through rownav's own
+  /// wheel odometry + EKF, the localizer `rownav run` measures; see `wheels`)
+  std::string odometry = "odom";
   std::string detector = "hough_skew";   ///< io::detector_names()
   std::string detect_config;             ///< config/detect/<crop>.yaml
   std::string tracker = "model_filter";  ///< io::tracker_names()
@@ -44,10 +50,17 @@ struct NodeConfig {
   /// when no message arrives; diagnostics are published once a second
   double watchdog_rate = 20.0;
   NavSatConfig gnss;  ///< `fix` (sensor_msgs/NavSatFix) -> local ENU (~gnss/<key>)
+  WheelJointConfig wheels;  ///< odometry "joint_states": which joints are wheels (~wheels/<key>)
+  /// odometry "joint_states": broadcast the stack's own pose as tf odom_frame -> base_frame and
+  /// publish it on ~odom (REP 105; nobody else does then). Off when the robot's driver already
+  /// broadcasts that transform.
+  bool publish_tf = true;
+  std::string odom_frame = "odom";  ///< REP 105 odometry frame of publish_tf
 
   template <class S, class V>
   static void fields(S& s, V& v) {
     v("input", s.input);
+    v("odometry", s.odometry);
     v("detector", s.detector);
     v("detect_config", s.detect_config);
     v("tracker", s.tracker);
@@ -69,6 +82,9 @@ struct NodeConfig {
     v("nominal_frame_period", s.nominal_frame_period);
     v("watchdog_rate", s.watchdog_rate);
     v("gnss", s.gnss);
+    v("wheels", s.wheels);
+    v("publish_tf", s.publish_tf);
+    v("odom_frame", s.odom_frame);
   }
   void validate() const;
 };
@@ -82,6 +98,8 @@ struct StackSetup {
   navigate::EndOfRowConfig end_of_row;
   navigate::RobotLimits robot;
   control::VelocityLimits limits;
+  /// odometry "joint_states": the robot file's wheel odometry model at wheels.ticks_per_rev
+  localize::LocalizerConfig localizer;
 };
 
 /// Loads the files named in `node` (mission, navigator, end of row, robot) with the CLI's strict

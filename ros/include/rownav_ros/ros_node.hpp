@@ -9,7 +9,9 @@
 #include <std_msgs/Bool.h>
 #include <std_msgs/String.h>
 #include <std_srvs/Trigger.h>
+#include <sensor_msgs/JointState.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -20,7 +22,9 @@
 
 namespace rownav::ros_bridge {
 
-/// The node. Topics (relative, remappable): subscribes `cloud` or `scan`, `odom`, `imu`
+/// The node. Topics (relative, remappable): subscribes `cloud` or `scan`, `odom` or
+/// `joint_states` (~odometry; with joint states the node runs rownav's own wheel odometry +
+/// IMU EKF and, with ~publish_tf, broadcasts odom -> base_link and publishes `~odom`), `imu`
 /// (~use_imu), `fix` (sensor_msgs/NavSatFix), `~enable` (std_msgs/Bool); publishes `cmd_vel`
 /// (unless observing only), `~tracking` (Vector3Stamped: lateral [m], heading [rad], spacing
 /// [m]), `~state` (std_msgs/String), `~rows` (PoseArray of the tracked rows, base frame) and
@@ -39,6 +43,9 @@ class RosNode {
   void on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void on_scan(const sensor_msgs::LaserScan::ConstPtr& msg);
   void on_odom(const nav_msgs::Odometry::ConstPtr& msg);
+  void on_joints(const sensor_msgs::JointState::ConstPtr& msg);
+  /// ~odometry joint_states + ~publish_tf: the stack's pose at `stamp` as tf and on ~odom.
+  void publish_own_odometry(double stamp);
   void on_imu(const sensor_msgs::Imu::ConstPtr& msg);
   void on_fix(const sensor_msgs::NavSatFix::ConstPtr& msg);
   void on_enable(const std_msgs::Bool::ConstPtr& msg);
@@ -63,9 +70,10 @@ class RosNode {
   std::string last_state_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;  // publish_tf only
   ros::Subscriber frame_sub_, odom_sub_, imu_sub_, fix_sub_, enable_sub_;
   ros::ServiceServer start_srv_, pause_srv_, stop_srv_;
-  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_, markers_pub_, diag_pub_;
+  ros::Publisher cmd_pub_, tracking_pub_, state_pub_, rows_pub_, markers_pub_, diag_pub_, odom_pub_;
   ros::Timer watchdog_timer_;
   int ticks_ = 0;
 };

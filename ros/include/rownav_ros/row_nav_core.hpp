@@ -11,6 +11,7 @@
 
 #include "rownav/navigate/nav_stack.hpp"
 #include "rownav_ros/conversions.hpp"
+#include "rownav_ros/joint_state_conversion.hpp"
 #include "rownav_ros/mission_control.hpp"
 #include "rownav_ros/navsat_conversion.hpp"
 #include "rownav_ros/node_config.hpp"
@@ -29,6 +30,12 @@ struct FrameResult {
   navigate::StopReason stop_reason = navigate::StopReason::none;
   std::vector<navigate::NavEvent> events;
   int corridor = -1;  ///< corridor of the plan being served
+};
+
+/// The answer to a wheel JointState message (NodeConfig::odometry = "joint_states").
+struct JointAnswer {
+  std::optional<core::Twist2> cmd;  ///< as on_odom: the command between frames, or nothing
+  std::string skipped;              ///< empty, or why the message gave no wheel sample
 };
 
 /// The watchdog tick's answer (a timer, between messages).
@@ -70,6 +77,13 @@ class RowNavCore {
   /// Stores the pose; once frames are processed, returns the navigator's command between frames
   /// (odometry-closed turns and line following), limited. nullopt: nothing to send.
   std::optional<core::Twist2> on_odom(const nav_msgs::Odometry& msg);
+  /// Wheel joint states (NodeConfig::odometry = "joint_states"): converted to cumulative wheel
+  /// counts (JointStateConverter) for the stack's own wheel odometry + IMU EKF, then answered
+  /// like on_odom. Ignored (skipped) when the node takes nav_msgs/Odometry. Never throws.
+  JointAnswer on_joints(const sensor_msgs::JointState& msg);
+  /// The stack's own pose and velocity at `stamp` for tf / ~odom (nullopt: the pose source is
+  /// the robot's nav_msgs/Odometry, or no wheel sample yet).
+  std::optional<OdomSample> own_odometry(double stamp) const;
   /// The command at `stamp` from a timer: the stack's watchdog zeroes it when the LiDAR or the
   /// odometry stopped coming (no message: no other call would). Never throws.
   TickResult tick(double stamp);
@@ -106,6 +120,7 @@ class RowNavCore {
   std::unique_ptr<navigate::NavStack> stack_;
   MissionControl mission_;
   NavSatConverter navsat_;
+  JointStateConverter joints_;
   bool mount_set_ = false, started_ = false;
   std::optional<double> last_odom_stamp_;
   std::optional<double> last_command_stamp_;  // [s] newest stamp NavStack::command was given

@@ -1,11 +1,13 @@
 #pragma once
 /// @file sim_node.hpp rownav's simulator as a ROS 1 node (issue 15): it publishes what a robot's
-/// drivers publish (/clock, the LiDAR's PointCloud2, the base's wheel odometry, the IMU, tf
+/// drivers publish (/clock, the LiDAR's PointCloud2, the wheel joint states, the base's wheel
+/// odometry, the IMU, tf
 /// odom -> base_link -> LiDAR, the true pose), drives the simulated robot with `cmd_vel`, and
 /// scores the run from the ground truth (SimScore), so that rownav_node, or any other row
 /// follower, can be driven in rownav's fields and measured by rownav's truth.
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/Vector3Stamped.h>
+#include <sensor_msgs/JointState.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/core/sensor_samples.hpp"
 #include "rownav/core/twist.hpp"
 #include "rownav/localize/localizer.hpp"
 #include "rownav/sim/ground_truth.hpp"
@@ -51,6 +54,15 @@ struct SimNodeConfig {
   std::string odom_frame = "odom";
   std::string base_frame = "base_link";
   std::string lidar_frame = "lidar";
+  /// wheel joints of the sensor_msgs/JointState published on `joint_states` (positions in rad
+  /// from the simulated encoder counts, as a base driver publishes them; skid-steer: one per
+  /// side, the track)
+  std::string left_wheel_joint = "left_wheel_joint";
+  std::string right_wheel_joint = "right_wheel_joint";
+  /// the base's own odometry: nav_msgs/Odometry on `odom` and tf odom -> base_link. false when
+  /// the follower computes its own (rownav_node ~odometry joint_states ~publish_tf), so that
+  /// two nodes do not broadcast the same transform
+  bool publish_odometry = true;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -67,12 +79,17 @@ struct SimNodeConfig {
     v("odom_frame", s.odom_frame);
     v("base_frame", s.base_frame);
     v("lidar_frame", s.lidar_frame);
+    v("left_wheel_joint", s.left_wheel_joint);
+    v("right_wheel_joint", s.right_wheel_joint);
+    v("publish_odometry", s.publish_odometry);
   }
   void validate() const {
     core::check(!field.empty(), "field", "required (a field YAML or zoo:SEED:INDEX)");
     core::check_non_negative(lead_in, "lead_in");
     core::check_non_negative(rate_factor, "rate_factor");
     core::check_positive(time_limit, "time_limit");
+    core::check(!left_wheel_joint.empty(), "left_wheel_joint", "must not be empty");
+    core::check(!right_wheel_joint.empty(), "right_wheel_joint", "must not be empty");
   }
 };
 
@@ -123,6 +140,8 @@ class SimNode {
   void on_tracking(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
   void sent_cloud(const ros::Time& stamp);
   void publish_truth(const sim::GroundTruth& g);
+  /// The encoder counts as wheel joint positions [rad] on `joint_states`.
+  void publish_joints(const core::WheelEncoderSample& s);
   void finish(bool timed_out);
 
   ros::NodeHandle nh_, pnh_;
@@ -132,7 +151,8 @@ class SimNode {
   std::unique_ptr<Sink> sink_;
   /// the base's wheel odometry (encoders + IMU), as a robot's base driver publishes it
   std::optional<localize::Localizer> odometry_;
-  ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_;
+  ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_, joints_pub_;
+  int ticks_per_rev_ = 1;  ///< the simulated encoders' resolution (counts -> joint angle)
   ros::Subscriber cmd_sub_, state_sub_, tracking_sub_;
   /// cmd_vel and the tracking output are taken on their own thread, when they arrive
   ros::CallbackQueue answers_;
