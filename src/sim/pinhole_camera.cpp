@@ -40,8 +40,8 @@ float texture_value(const Eigen::Vector3f& p, float cell, std::uint64_t seed) {
 void PinholeCameraConfig::validate() const {
   core::check_range(width, 1, kMaxSide, "width");
   core::check_range(height, 1, kMaxSide, "height");
-  core::check(horizontal_fov_deg > 0.0 && horizontal_fov_deg <= kMaxFovDeg,
-              "horizontal_fov_deg", "must be in (0, 170]");
+  core::check(horizontal_fov_deg > 0.0 && horizontal_fov_deg <= kMaxFovDeg, "horizontal_fov_deg",
+              "must be in (0, 170]");
   core::check(mount_xyz.allFinite() && mount_xyz.cwiseAbs().maxCoeff() <= max_mount_offset,
               "mount_xyz", "every component must be finite and within max_mount_offset");
   core::check(mount_rpy_deg.allFinite(), "mount_rpy_deg", "must be finite");
@@ -66,8 +66,8 @@ void PinholeCameraConfig::validate() const {
   check_colour(obstacle_colour, "obstacle_colour");
   check_colour(other_colour, "other_colour");
   check_colour(other_crop_colour, "other_crop_colour");
-  core::check(!use_target_region || (target_max.array() > target_min.array()).all(),
-              "target_max", "must exceed target_min in x and y");
+  core::check(!use_target_region || (target_max.array() > target_min.array()).all(), "target_max",
+              "must exceed target_min in x and y");
 }
 
 core::CameraIntrinsics PinholeCameraConfig::intrinsics() const {
@@ -101,16 +101,26 @@ Eigen::Vector3d PinholeCameraConfig::colour(SurfaceClass c, const Eigen::Vector2
       !((world.array() >= target_min.array()).all() && (world.array() <= target_max.array()).all()))
     return other_crop_colour;
   switch (c) {
-    case SurfaceClass::ground: return ground_colour;
-    case SurfaceClass::trunk: return trunk_colour;
-    case SurfaceClass::canopy: return canopy_colour;
-    case SurfaceClass::post: return post_colour;
-    case SurfaceClass::wire: return wire_colour;
-    case SurfaceClass::weed: return weed_colour;
-    case SurfaceClass::crop: return crop_colour;
-    case SurfaceClass::crown: return crown_colour;
-    case SurfaceClass::obstacle: return obstacle_colour;
-    case SurfaceClass::other: return other_colour;
+    case SurfaceClass::ground:
+      return ground_colour;
+    case SurfaceClass::trunk:
+      return trunk_colour;
+    case SurfaceClass::canopy:
+      return canopy_colour;
+    case SurfaceClass::post:
+      return post_colour;
+    case SurfaceClass::wire:
+      return wire_colour;
+    case SurfaceClass::weed:
+      return weed_colour;
+    case SurfaceClass::crop:
+      return crop_colour;
+    case SurfaceClass::crown:
+      return crown_colour;
+    case SurfaceClass::obstacle:
+      return obstacle_colour;
+    case SurfaceClass::other:
+      return other_colour;
   }
   return other_colour;
 }
@@ -139,8 +149,8 @@ void PinholeCamera::cast_shadows(const RayCaster& world, const Eigen::Vector3f& 
     origins_[k] = points_[i] + bias * hits_[i].normal;  // off the surface, on the lit side
   }
   std::vector<RayHit> shadow(n);
-  world.cast_batch(origins_.data(), dirs_.data(), n, 0.0f,
-                   static_cast<float>(config_.range_max), shadow.data());
+  world.cast_batch(origins_.data(), dirs_.data(), n, 0.0f, static_cast<float>(config_.range_max),
+                   shadow.data());
   for (std::size_t k = 0; k < n; ++k)
     if (shadow[k].hit()) lambert_[shadow_idx_[k]] = 0.0f;
 }
@@ -161,8 +171,8 @@ void PinholeCamera::shade(std::size_t i, std::uint8_t* rgb) {
         (light * texture);
   }
   for (int k = 0; k < 3; ++k)
-    rgb[k] = static_cast<std::uint8_t>(
-        std::lround(std::clamp(c[k] + noise(rng_), 0.0f, 1.0f) * kByte));
+    rgb[k] =
+        static_cast<std::uint8_t>(std::lround(std::clamp(c[k] + noise(rng_), 0.0f, 1.0f) * kByte));
 }
 
 core::CameraImage PinholeCamera::render(const RayCaster& world,

@@ -158,9 +158,9 @@ void DnnDetector::run(const core::CameraImage& image, std::vector<Detection>& ou
   out.clear();
   const cv::Mat rgb(image.height(), image.width(), CV_8UC3,
                     const_cast<std::uint8_t*>(image.rgb.data()));
-  const cv::Mat blob = cv::dnn::blobFromImage(
-      rgb, config_.pixel_scale, cv::Size(config_.input_width, config_.input_height), cv::Scalar(),
-      config_.swap_rb, false);
+  const cv::Mat blob = cv::dnn::blobFromImage(rgb, config_.pixel_scale,
+                                              cv::Size(config_.input_width, config_.input_height),
+                                              cv::Scalar(), config_.swap_rb, false);
   impl_->net.setInput(blob);
   std::vector<cv::Mat> outs;
   impl_->net.forward(outs, impl_->outputs);

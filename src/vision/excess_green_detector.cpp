@@ -18,8 +18,8 @@ constexpr std::uint8_t kNoClass = std::numeric_limits<std::uint8_t>::max();
 constexpr int kMaxClasses = 254;  // class k is stored as k + 1 in a byte, 0 = background
 
 std::uint8_t exg_to_byte(double exg) {
-  return static_cast<std::uint8_t>(std::lround(std::clamp((exg - kExgMin) / kExgSpan, 0.0, 1.0) *
-                                               kByteMax));
+  return static_cast<std::uint8_t>(
+      std::lround(std::clamp((exg - kExgMin) / kExgSpan, 0.0, 1.0) * kByteMax));
 }
 
 /// Index of the class whose chromaticity is nearest (r, g), kNoClass beyond max_distance.
@@ -38,6 +38,47 @@ std::uint8_t nearest_class(const std::vector<ExgClassConfig>& classes, double r,
   return best;
 }
 
+/// A box around pixel rectangle [u0, u1) x [v0, v1) grown by the margin, clamped to the image.
+Detection make_box(int u0, int v0, int u1, int v1, int pixels, int k, const cv::Mat& mask,
+                   int margin) {
+  Detection d;
+  d.u_min = static_cast<float>(std::max(0, u0 - margin));
+  d.v_min = static_cast<float>(std::max(0, v0 - margin));
+  d.u_max = static_cast<float>(std::min(mask.cols, u1 + margin));
+  d.v_max = static_cast<float>(std::min(mask.rows, v1 + margin));
+  d.class_id = k;
+  d.score = static_cast<float>(pixels) / static_cast<float>((u1 - u0) * (v1 - v0));
+  return d;
+}
+
+/// Per tile x tile cell of component `id`'s bounding rect, the box of its pixels in the cell.
+void tile_boxes(const cv::Mat& labels, int id, const cv::Rect& r, int k,
+                const ExcessGreenDetectorConfig& c, std::vector<Detection>& out) {
+  const int nu = (r.width + c.tile_px - 1) / c.tile_px, nv = (r.height + c.tile_px - 1) / c.tile_px;
+  struct Cell {
+    int u0 = std::numeric_limits<int>::max(), v0 = std::numeric_limits<int>::max(), u1 = 0, v1 = 0,
+        n = 0;
+  };
+  std::vector<Cell> cells(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv));
+  for (int v = r.y; v < r.y + r.height; ++v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = r.x; u < r.x + r.width; ++u) {
+      if (row[u] != id) continue;
+      Cell& cell =
+          cells[static_cast<std::size_t>((v - r.y) / c.tile_px * nu + (u - r.x) / c.tile_px)];
+      cell.u0 = std::min(cell.u0, u);
+      cell.v0 = std::min(cell.v0, v);
+      cell.u1 = std::max(cell.u1, u + 1);
+      cell.v1 = std::max(cell.v1, v + 1);
+      ++cell.n;
+    }
+  }
+  for (const Cell& cell : cells)
+    if (cell.n > 0)
+      out.push_back(
+          make_box(cell.u0, cell.v0, cell.u1, cell.v1, cell.n, k, labels, c.box_margin_px));
+}
+
 /// Boxes of the connected components of `mask` (8-connected) into out, with class `k`.
 void components_to_boxes(const cv::Mat& mask, int k, const ExcessGreenDetectorConfig& c,
                          std::vector<Detection>& out) {
@@ -46,25 +87,22 @@ void components_to_boxes(const cv::Mat& mask, int k, const ExcessGreenDetectorCo
   for (int i = 1; i < n; ++i) {  // 0 is the background
     const int area = stats.at<int>(i, cv::CC_STAT_AREA);
     if (area < c.min_area_px) continue;
-    const int u = stats.at<int>(i, cv::CC_STAT_LEFT), v = stats.at<int>(i, cv::CC_STAT_TOP);
-    const int w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
-    Detection d;
-    d.u_min = static_cast<float>(std::max(0, u - c.box_margin_px));
-    d.v_min = static_cast<float>(std::max(0, v - c.box_margin_px));
-    d.u_max = static_cast<float>(std::min(mask.cols, u + w + c.box_margin_px));
-    d.v_max = static_cast<float>(std::min(mask.rows, v + h + c.box_margin_px));
-    d.class_id = k;
-    d.score = static_cast<float>(area) / static_cast<float>(w * h);
-    out.push_back(d);
+    const cv::Rect r(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                     stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
+    if (c.tile_px > 0 && (r.width > c.tile_px || r.height > c.tile_px))
+      tile_boxes(labels, i, r, k, c, out);
+    else
+      out.push_back(
+          make_box(r.x, r.y, r.x + r.width, r.y + r.height, area, k, mask, c.box_margin_px));
   }
 }
 
 }  // namespace
 
 void ExgClassConfig::validate() const {
-  core::check(chromaticity.allFinite() && (chromaticity.array() >= 0.0).all() &&
-                  chromaticity.sum() <= 1.0,
-              "chromaticity", "r, g must be >= 0 with r + g <= 1");
+  core::check(
+      chromaticity.allFinite() && (chromaticity.array() >= 0.0).all() && chromaticity.sum() <= 1.0,
+      "chromaticity", "r, g must be >= 0 with r + g <= 1");
 }
 
 void ExcessGreenDetectorConfig::validate() const {
@@ -78,6 +116,7 @@ void ExcessGreenDetectorConfig::validate() const {
   core::check_positive(close_kernel_px, "close_kernel_px");
   core::check_positive(min_area_px, "min_area_px");
   core::check_non_negative(box_margin_px, "box_margin_px");
+  core::check_non_negative(tile_px, "tile_px");
 }
 
 ExcessGreenDetector::ExcessGreenDetector(const ExcessGreenDetectorConfig& config)
@@ -92,7 +131,7 @@ void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Det
   exg_.resize(n);
   exg8_.resize(n);
   pixel_class_.resize(n);
-  std::vector<std::uint8_t> nearest(n);
+  nearest_.resize(n);
   const double dark = config_.min_brightness * kMaxRgbSum;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t* p = image.rgb.data() + 3 * i;
@@ -100,13 +139,13 @@ void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Det
     if (sum < dark || sum <= 0.0) {  // no reliable chromaticity
       exg_[i] = std::numeric_limits<float>::quiet_NaN();
       exg8_[i] = 0;
-      nearest[i] = kNoClass;
+      nearest_[i] = kNoClass;
       continue;
     }
     const double r = p[0] / sum, g = p[1] / sum, b = p[2] / sum;
     exg_[i] = static_cast<float>(2.0 * g - r - b);  // Woebbecke 1995 excess green
     exg8_[i] = exg_to_byte(exg_[i]);
-    nearest[i] = nearest_class(config_.classes, r, g, config_.max_class_distance);
+    nearest_[i] = nearest_class(config_.classes, r, g, config_.max_class_distance);
   }
   try {
     double t = config_.exg_threshold;
@@ -117,7 +156,7 @@ void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Det
     }
     last_threshold_ = t;
     for (std::size_t i = 0; i < n; ++i)
-      pixel_class_[i] = (exg_[i] > t && nearest[i] != kNoClass) ? nearest[i] + 1 : 0;
+      pixel_class_[i] = (exg_[i] > t && nearest_[i] != kNoClass) ? nearest_[i] + 1 : 0;
     const cv::Mat classes(image.height(), image.width(), CV_8UC1, pixel_class_.data());
     const cv::Mat open = cv::getStructuringElement(
         cv::MORPH_ELLIPSE, cv::Size(config_.open_kernel_px, config_.open_kernel_px));

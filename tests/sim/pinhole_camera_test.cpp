@@ -39,7 +39,9 @@ Eigen::Vector3d mean_colour(const core::CameraImage& img, int u, int v, int r) {
 }
 
 /// Chromaticity (r, g, b) / (r + g + b): independent of the shading.
-Eigen::Vector3d chroma(const Eigen::Vector3d& c) { return c / std::max(c.sum(), 1e-9); }
+Eigen::Vector3d chroma(const Eigen::Vector3d& c) {
+  return c / std::max(c.sum(), 1e-9);
+}
 
 /// Pixel of a base-frame point, or (-1, -1) outside the image.
 Eigen::Vector2i pixel_of(const core::CameraImage& img, const Eigen::Vector3d& p_base) {
@@ -120,13 +122,15 @@ TEST(PinholeCamera, CropOutsideTheTargetRegionTakesTheOtherCropColour) {
   c.shadows = false;
   TriangleMesh m = ground(40.0f);
   for (const float y : {-1.0f, 1.0f})
-    add_cylinder(m, Eigen::Vector3f(5, y, 0), Eigen::Vector3f(5, y, 1), 0.3f, 8,
-                 SurfaceClass::crop, true);
+    add_cylinder(m, Eigen::Vector3f(5, y, 0), Eigen::Vector3f(5, y, 1), 0.3f, 8, SurfaceClass::crop,
+                 true);
   const RayCaster world(m);
   PinholeCamera cam(c, 4);
   const auto img = cam.render(world, Eigen::Isometry3d::Identity(), 0.0);
-  const Eigen::Vector2i right = pixel_of(img, {5.0, -1.0, 0.5}), left = pixel_of(img, {5.0, 1.0, 0.5});
-  EXPECT_LT((chroma(mean_colour(img, right.x(), right.y(), 1)) - chroma(c.crop_colour)).norm(), 0.03);
+  const Eigen::Vector2i right = pixel_of(img, {5.0, -1.0, 0.5}),
+                        left = pixel_of(img, {5.0, 1.0, 0.5});
+  EXPECT_LT((chroma(mean_colour(img, right.x(), right.y(), 1)) - chroma(c.crop_colour)).norm(),
+            0.03);
   EXPECT_LT((chroma(mean_colour(img, left.x(), left.y(), 1)) - chroma(c.other_crop_colour)).norm(),
             0.03);
 }

@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <array>
 #include <cstdlib>
-#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -49,7 +49,8 @@ core::CameraImage grid_image(const std::vector<std::array<int, 5>>& cells) {  //
   for (const auto& c : cells)
     for (int v = c[1] * 32; v < c[1] * 32 + 32; ++v)
       for (int u = c[0] * 32; u < c[0] * 32 + 32; ++u)
-        for (int k = 0; k < 3; ++k) img.rgb[(std::size_t(v) * 128 + u) * 3 + k] = std::uint8_t(c[2 + k]);
+        for (int k = 0; k < 3; ++k)
+          img.rgb[(std::size_t(v) * 128 + u) * 3 + k] = std::uint8_t(c[2 + k]);
   return img;
 }
 

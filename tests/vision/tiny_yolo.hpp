@@ -29,11 +29,12 @@ inline void write_tiny_yolo(const std::filesystem::path& cfg, const std::filesys
   std::string data(reinterpret_cast<const char*>(header), sizeof header);
   data.append(reinterpret_cast<const char*>(&seen), sizeof seen);
   // outputs: tx, ty, tw, th, objectness, class 0, class 1
-  std::vector<float> v{0, 0, 0, 0, -3, -5, -5,  // biases
-                       0, 0, 0,   0, 0, 0,   0, 0, 0,   0, 0, 0,  // box: centre of the cell, anchor size
-                       -10, 10, 10,  // objectness from R, G, B
-                       0, 10, 0,     // class 0: green
-                       0, 0, 10};    // class 1: blue
+  std::vector<float> v{0,   0,  0,  0, -3, -5, -5,  // biases
+                       0,   0,  0,  0, 0,  0,  0,
+                       0,   0,  0,  0, 0,  // box: centre of the cell, anchor size
+                       -10, 10, 10,        // objectness from R, G, B
+                       0,   10, 0,         // class 0: green
+                       0,   0,  10};       // class 1: blue
   data.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(float));
   if (bytes > 0) data.resize(bytes);
   w.write(data.data(), static_cast<std::streamsize>(data.size()));

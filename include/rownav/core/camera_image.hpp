@@ -13,22 +13,20 @@ namespace rownav::core {
 /// Pinhole intrinsics in pixels. Pixel (u, v) covers [u, u + 1) x [v, v + 1): a point (x, y, z)
 /// of the optical frame projects to u = fx x / z + cx, v = fy y / z + cy (no distortion).
 struct CameraIntrinsics {
-  int width = 0;      ///< [px] columns
-  int height = 0;     ///< [px] rows
-  double fx = 0.0;    ///< [px] focal length along u
-  double fy = 0.0;    ///< [px] focal length along v
-  double cx = 0.0;    ///< [px] principal point u
-  double cy = 0.0;    ///< [px] principal point v
+  int width = 0;    ///< [px] columns
+  int height = 0;   ///< [px] rows
+  double fx = 0.0;  ///< [px] focal length along u
+  double fy = 0.0;  ///< [px] focal length along v
+  double cx = 0.0;  ///< [px] principal point u
+  double cy = 0.0;  ///< [px] principal point v
 
   /// Pixel coordinates of an optical-frame point; nullopt behind the camera (z <= min_depth),
   /// for a non-finite point or outside the image.
-  std::optional<Eigen::Vector2d> project(const Eigen::Vector3d& p_camera,
-                                         double min_depth) const {
+  std::optional<Eigen::Vector2d> project(const Eigen::Vector3d& p_camera, double min_depth) const {
     if (!p_camera.allFinite() || p_camera.z() <= min_depth) return std::nullopt;
     const Eigen::Vector2d uv(fx * p_camera.x() / p_camera.z() + cx,
                              fy * p_camera.y() / p_camera.z() + cy);
-    if (!(uv.x() >= 0.0 && uv.x() < width && uv.y() >= 0.0 && uv.y() < height))
-      return std::nullopt;
+    if (!(uv.x() >= 0.0 && uv.x() < width && uv.y() >= 0.0 && uv.y() < height)) return std::nullopt;
     return uv;
   }
   /// Unit ray direction (optical frame) through image point (u, v) [px].
@@ -56,7 +54,8 @@ struct CameraImage {
   /// Pointer to pixel (u, v)'s R byte (no bounds check).
   const std::uint8_t* pixel(int u, int v) const {
     return rgb.data() + (static_cast<std::size_t>(v) * static_cast<std::size_t>(width()) +
-                         static_cast<std::size_t>(u)) * 3;
+                         static_cast<std::size_t>(u)) *
+                            3;
   }
 };
 

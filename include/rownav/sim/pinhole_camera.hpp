@@ -33,23 +33,23 @@ struct PinholeCameraConfig {
   double range_max = 60.0;          ///< [m] farther surfaces show the sky (rownav)
   /// [-] direction towards the sun, world frame (normalised on use; z > 0: above the horizon)
   Eigen::Vector3d sun_direction{-0.4, 0.3, 0.85};
-  double ambient = 0.35;        ///< [-] share of light reaching shadowed surfaces (sky light)
-  bool shadows = true;          ///< cast a shadow ray towards the sun from every lit hit
+  double ambient = 0.35;            ///< [-] share of light reaching shadowed surfaces (sky light)
+  bool shadows = true;              ///< cast a shadow ray towards the sun from every lit hit
   double texture_variation = 0.15;  ///< [-] relative brightness amplitude of a world-fixed texture
   double texture_cell = 0.04;       ///< [m] cell of that texture (leaves, soil clods)
   double pixel_noise_std = 0.02;    ///< [-] gaussian noise per channel and pixel (sensor noise)
   double sun_shadow_bias = 0.01;    ///< [m] shadow rays start this far off the surface (acne)
-  Eigen::Vector3d sky_colour{0.55, 0.70, 0.90};      ///< [-] misses
-  Eigen::Vector3d ground_colour{0.45, 0.35, 0.25};   ///< [-] bare soil
-  Eigen::Vector3d crop_colour{0.42, 0.62, 0.12};     ///< [-] target crop plants (yellow-green)
-  Eigen::Vector3d canopy_colour{0.30, 0.55, 0.15};   ///< [-] vine foliage
-  Eigen::Vector3d crown_colour{0.25, 0.50, 0.15};    ///< [-] tree crowns
-  Eigen::Vector3d trunk_colour{0.35, 0.25, 0.18};    ///< [-] trunks
-  Eigen::Vector3d post_colour{0.55, 0.55, 0.52};     ///< [-] posts
-  Eigen::Vector3d wire_colour{0.60, 0.60, 0.60};     ///< [-] wires
-  Eigen::Vector3d weed_colour{0.30, 0.45, 0.22};     ///< [-] weeds, grass
-  Eigen::Vector3d obstacle_colour{0.20, 0.25, 0.60}; ///< [-] obstacles (a person's clothes)
-  Eigen::Vector3d other_colour{0.50, 0.50, 0.50};    ///< [-] anything else
+  Eigen::Vector3d sky_colour{0.55, 0.70, 0.90};       ///< [-] misses
+  Eigen::Vector3d ground_colour{0.45, 0.35, 0.25};    ///< [-] bare soil
+  Eigen::Vector3d crop_colour{0.42, 0.62, 0.12};      ///< [-] target crop plants (yellow-green)
+  Eigen::Vector3d canopy_colour{0.30, 0.55, 0.15};    ///< [-] vine foliage
+  Eigen::Vector3d crown_colour{0.25, 0.50, 0.15};     ///< [-] tree crowns
+  Eigen::Vector3d trunk_colour{0.35, 0.25, 0.18};     ///< [-] trunks
+  Eigen::Vector3d post_colour{0.55, 0.55, 0.52};      ///< [-] posts
+  Eigen::Vector3d wire_colour{0.60, 0.60, 0.60};      ///< [-] wires
+  Eigen::Vector3d weed_colour{0.30, 0.45, 0.22};      ///< [-] weeds, grass
+  Eigen::Vector3d obstacle_colour{0.20, 0.25, 0.60};  ///< [-] obstacles (a person's clothes)
+  Eigen::Vector3d other_colour{0.50, 0.50, 0.50};     ///< [-] anything else
   /// Surfaces of a crop classes outside [target_min, target_max] (world x, y) take
   /// other_crop_colour: a neighbouring field of another crop (as sim::TruthLabeller's region).
   bool use_target_region = false;
@@ -58,7 +58,8 @@ struct PinholeCameraConfig {
   /// classes recoloured outside the target region (the plants of a field)
   std::vector<SurfaceClass> field_classes{SurfaceClass::crop, SurfaceClass::canopy,
                                           SurfaceClass::crown};
-  /// [-] the neighbouring field's crop (blue-green, like cabbage or leek beside a yellow-green crop)
+  /// [-] the neighbouring field's crop (blue-green, like cabbage or leek beside a yellow-green
+  /// crop)
   Eigen::Vector3d other_crop_colour{0.22, 0.48, 0.42};
 
   template <class S, class V>

@@ -35,9 +35,12 @@ struct ExcessGreenDetectorConfig {
   std::vector<ExgClassConfig> classes{{{0.362, 0.534}}, {{0.196, 0.429}}, {{0.309, 0.464}}};
   /// [-] a pixel farther than this in (r, g) from every class is not a plant (rownav)
   double max_class_distance = 0.08;
-  bool otsu = true;  ///< threshold ExG by Otsu's method per image (else exg_threshold)
-  /// [-] ExG threshold without Otsu; with Otsu, the lowest threshold accepted (an image without
-  /// plants must not split its soil noise in two) (rownav)
+  /// threshold ExG by Otsu's method per image (Otsu 1979; at least exg_threshold). Off by
+  /// default: chromaticity already removes the brightness, and with two crops of different
+  /// greenness in view Otsu's two-mode split can fall between the crops (rownav, measured)
+  bool otsu = false;
+  /// [-] ExG threshold; with Otsu, the lowest threshold accepted (an image without plants must
+  /// not split its soil noise in two). Soil ~0, the bluest default crop ~0.29 (rownav)
   double exg_threshold = 0.15;
   /// [-] darker pixels (R + G + B below this x 765) have no reliable chromaticity: not plants
   double min_brightness = 0.04;
@@ -45,6 +48,10 @@ struct ExcessGreenDetectorConfig {
   int close_kernel_px = 5;  ///< [px] closing: joins the leaves of one plant (rownav)
   int min_area_px = 12;     ///< [px] smaller components are noise (rownav, 320 x 240 images)
   int box_margin_px = 1;    ///< [px] each box grows by this much (laser points on leaf edges)
+  /// [px] a component wider or taller than this (plants of a row touching in the image) gives
+  /// one box per tile x tile cell, hugging its pixels in the cell, so that a row seen in
+  /// perspective is not one box over the soil and weeds between the rows; 0: one box each (rownav)
+  int tile_px = 24;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -57,6 +64,7 @@ struct ExcessGreenDetectorConfig {
     v("close_kernel_px", s.close_kernel_px);
     v("min_area_px", s.min_area_px);
     v("box_margin_px", s.box_margin_px);
+    v("tile_px", s.tile_px);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
@@ -75,9 +83,10 @@ class ExcessGreenDetector : public ImageDetector {
  private:
   ExcessGreenDetectorConfig config_;
   double last_threshold_ = 0.0;
-  std::vector<float> exg_;                // per pixel, NaN for dark pixels
-  std::vector<std::uint8_t> exg8_;        // ExG mapped to 0..255 for Otsu
-  std::vector<std::uint8_t> pixel_class_; // 0: not a plant, k + 1: class k
+  std::vector<float> exg_;                 // per pixel, NaN for dark pixels
+  std::vector<std::uint8_t> exg8_;         // ExG mapped to 0..255 for Otsu
+  std::vector<std::uint8_t> nearest_;      // nearest class per pixel, 255: none
+  std::vector<std::uint8_t> pixel_class_;  // 0: not a plant, k + 1: class k
 };
 
 }  // namespace rownav::vision
