@@ -56,6 +56,21 @@ std::optional<double> JointStateConverter::mean_of(const sensor_msgs::JointState
   return sum / static_cast<double>(joints.size());
 }
 
+sensor_msgs::JointState to_joint_state_msg(const core::WheelEncoderSample& s, int ticks_per_rev,
+                                           const WheelJointConfig& joints) {
+  sensor_msgs::JointState j;
+  j.header.stamp.fromSec(s.stamp);
+  const double rad_per_tick = 2.0 * std::numbers::pi / ticks_per_rev;
+  j.name = {joints.left_joints.front(), joints.right_joints.front()};
+  j.position = {rad_per_tick * static_cast<double>(s.left_ticks),
+                rad_per_tick * static_cast<double>(s.right_ticks)};
+  if (!joints.steering_joint.empty()) {
+    j.name.push_back(joints.steering_joint);
+    j.position.push_back(s.steering_angle);
+  }
+  return j;
+}
+
 JointConversion JointStateConverter::convert(const sensor_msgs::JointState& msg) {
   JointConversion out;
   const bool any = index_of(msg, config_.left_joints.front()) >= 0 ||

@@ -34,8 +34,10 @@ navigate::NavStackConfig stack_config(const StackSetup& s) {
   return c;
 }
 
-std::unique_ptr<navigate::NavStack> make_stack(const StackSetup& s,
-                                               const Eigen::Isometry3d& T_base_lidar) {
+}  // namespace
+
+std::unique_ptr<navigate::NavStack> make_node_stack(const StackSetup& s,
+                                                    const Eigen::Isometry3d& T_base_lidar) {
   const NodeConfig& n = s.node;
   navigate::NavStackParts parts;
   parts.pipeline = std::make_unique<detect::DetectionPipeline>(
@@ -46,11 +48,9 @@ std::unique_ptr<navigate::NavStack> make_stack(const StackSetup& s,
                                               s.mission.first_turn);
 }
 
-}  // namespace
-
 RowNavCore::RowNavCore(StackSetup setup)
     : setup_(std::move(setup)),
-      stack_(make_stack(setup_, Eigen::Isometry3d::Identity())),
+      stack_(make_node_stack(setup_, Eigen::Isometry3d::Identity())),
       mission_(setup_.node.autostart),
       navsat_(setup_.node.gnss),
       joints_(setup_.node.wheels) {}
@@ -59,7 +59,7 @@ RowNavCore::~RowNavCore() = default;
 
 void RowNavCore::set_mount(const Eigen::Isometry3d& T_base_lidar) {
   // Known once, before the first frame (parameter or tf): the stack starts with it.
-  stack_ = make_stack(setup_, T_base_lidar);
+  stack_ = make_node_stack(setup_, T_base_lidar);
   mount_set_ = true;
   started_ = false;
   last_odom_stamp_.reset();

@@ -20,6 +20,7 @@
 #include "rownav/sim/field_truth.hpp"
 #include "rownav/sim/simulator.hpp"
 #include "rownav_ros/conversions.hpp"
+#include "rownav_ros/joint_state_conversion.hpp"
 #include "rownav_ros/ros_params.hpp"
 
 namespace rownav::ros_bridge {
@@ -137,13 +138,10 @@ SimNode::~SimNode() {
 }
 
 void SimNode::publish_joints(const core::WheelEncoderSample& s) {
-  sensor_msgs::JointState j;
-  j.header.stamp.fromSec(s.stamp);
-  j.name = {config_.left_wheel_joint, config_.right_wheel_joint};
-  const double rad_per_tick = 2.0 * M_PI / ticks_per_rev_;
-  j.position = {rad_per_tick * static_cast<double>(s.left_ticks),
-                rad_per_tick * static_cast<double>(s.right_ticks)};
-  joints_pub_.publish(j);
+  WheelJointConfig joints;
+  joints.left_joints = {config_.left_wheel_joint};
+  joints.right_joints = {config_.right_wheel_joint};
+  joints_pub_.publish(to_joint_state_msg(s, ticks_per_rev_, joints));
 }
 
 void SimNode::on_cmd(const geometry_msgs::Twist::ConstPtr& msg) {

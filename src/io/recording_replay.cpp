@@ -106,7 +106,31 @@ const auto& at(const V& v, std::int64_t i, const CsvReader& r, const fs::path& f
 
 }  // namespace
 
+namespace {
+
+/// The samples as they are.
+class StackSink : public InputLogSink {
+ public:
+  explicit StackSink(navigate::NavStack& stack) : stack_(stack) {}
+  void on_encoders(const core::WheelEncoderSample& s) override { stack_.on_encoders(s); }
+  void on_imu(const core::ImuSample& s) override { stack_.on_imu(s); }
+  void on_gnss(const core::GnssFix& s) override { stack_.on_gnss(s); }
+  void on_cloud(core::PointCloud cloud) override { stack_.on_cloud(std::move(cloud)); }
+  void on_scan(core::Scan2D scan) override { stack_.on_scan(std::move(scan)); }
+  navigate::NavCommand command(double stamp) override { return stack_.command(stamp); }
+
+ private:
+  navigate::NavStack& stack_;
+};
+
+}  // namespace
+
 std::vector<ReplayedCommand> replay_input_log(const Recording& rec, navigate::NavStack& stack) {
+  StackSink sink(stack);
+  return replay_input_log(rec, sink);
+}
+
+std::vector<ReplayedCommand> replay_input_log(const Recording& rec, InputLogSink& stack) {
   const fs::path file = rec.dir / kInputLog;
   CsvReader r(file);
   std::vector<ReplayedCommand> out;

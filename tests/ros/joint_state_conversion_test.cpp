@@ -115,3 +115,19 @@ TEST(JointStateConverter, ABadConfigurationNamesTheField) {
   c.ticks_per_rev = 0;
   EXPECT_THROW(rb::JointStateConverter{c}, std::invalid_argument);
 }
+
+TEST(JointStateConverter, ADriversMessageOfEncoderCountsConvertsBackToTheSameCounts) {
+  rb::WheelJointConfig c;  // 65536 ticks per revolution, the simulator's encoders 2048
+  c.steering_joint = "front_steer";
+  rb::JointStateConverter conv(c);
+  for (std::int64_t ticks : {0L, 1L, -7L, 2047L, 123456789L}) {
+    rownav::core::WheelEncoderSample s;
+    s.stamp = 1.0 + 1e-3 * static_cast<double>(ticks % 1000);
+    s.left_ticks = ticks, s.right_ticks = -3 * ticks, s.steering_angle = 0.25;
+    const auto r = conv.convert(rb::to_joint_state_msg(s, 2048, c));
+    ASSERT_TRUE(r.sample) << r.skipped;
+    EXPECT_EQ(r.sample->left_ticks, 32 * ticks);  // the same angle at 32x the resolution
+    EXPECT_EQ(r.sample->right_ticks, -96 * ticks);
+    EXPECT_EQ(r.sample->steering_angle, 0.25);
+  }
+}

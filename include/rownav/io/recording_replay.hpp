@@ -38,8 +38,23 @@ struct ReplayedCommand {
   std::string live_state, replayed_state;
 };
 
-/// Replays `rec`'s input log into `stack` call by call. InputError on a malformed log or an
+/// Where a log replay's calls go: a NavStack as it is (the CLI), or an adapter that converts
+/// each sample first (the ROS node's messages, tests/ros/cli_ros_equivalence_test.cpp).
+class InputLogSink {
+ public:
+  virtual ~InputLogSink() = default;
+  virtual void on_encoders(const core::WheelEncoderSample& s) = 0;
+  virtual void on_imu(const core::ImuSample& s) = 0;
+  virtual void on_gnss(const core::GnssFix& s) = 0;
+  virtual void on_cloud(core::PointCloud cloud) = 0;
+  virtual void on_scan(core::Scan2D scan) = 0;
+  virtual navigate::NavCommand command(double stamp) = 0;
+};
+
+/// Replays `rec`'s input log into `sink` call by call. InputError on a malformed log or an
 /// index outside its stream.
+std::vector<ReplayedCommand> replay_input_log(const Recording& rec, InputLogSink& sink);
+/// The same into `stack` as it is.
 std::vector<ReplayedCommand> replay_input_log(const Recording& rec, navigate::NavStack& stack);
 
 }  // namespace rownav::io

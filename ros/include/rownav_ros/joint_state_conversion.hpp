@@ -50,6 +50,13 @@ struct JointConversion {
   std::string skipped;                             ///< empty, or why no sample came out (one line)
 };
 
+/// Wheel counts of `ticks_per_rev` as the JointState a base driver publishes: the first left and
+/// right joint of `joints` at angle 2 pi ticks / ticks_per_rev [rad], the steering joint (when
+/// named) at the steering angle. The inverse of JointStateConverter::convert for the same
+/// resolution (the simulator node, tests).
+sensor_msgs::JointState to_joint_state_msg(const core::WheelEncoderSample& s, int ticks_per_rev,
+                                           const WheelJointConfig& joints);
+
 /// Converts JointState messages into cumulative wheel counts. Never throws after construction.
 class JointStateConverter {
  public:

@@ -48,6 +48,12 @@ struct TickResult {
   std::vector<navigate::NavEvent> events;
 };
 
+/// The NavStack rownav_node runs for `setup` with the LiDAR at `T_base_lidar` (RowNavCore owns
+/// one; tests/ros/cli_ros_equivalence_test.cpp compares it with `rownav run`'s). Throws like
+/// RowNavCore's constructor.
+std::unique_ptr<navigate::NavStack> make_node_stack(const StackSetup& setup,
+                                                    const Eigen::Isometry3d& T_base_lidar);
+
 /// Per-frame processing of rownav_node. Not thread-safe (call from one callback queue).
 /// Frame and odometry handlers never throw.
 ///
