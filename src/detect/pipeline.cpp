@@ -13,10 +13,10 @@ Eigen::Isometry2d planar_mount(const Eigen::Isometry3d& T_base_lidar) {
   return T;
 }
 
-DetectionPipeline::DetectionPipeline(preprocess::PreprocessConfig config,
+DetectionPipeline::DetectionPipeline(const PipelineConfig& config,
                                      std::unique_ptr<RowDetector> detector,
                                      const Eigen::Isometry3d& T_base_lidar)
-    : preprocessor_(config),
+    : preprocessor_(config.preprocess),
       detector_(std::move(detector)),
       profile_(config.row_profile),
       T_base_lidar_(T_base_lidar) {
@@ -30,8 +30,7 @@ core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_li
 core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_lidar,
                                                 const Eigen::Vector3d& up_base) {
   const double norm = up_base.norm();
-  const double max_tilt = 30.0 * 3.14159265358979323846 / 180.0;  // [rad] beyond: bad input
-  if (!up_base.allFinite() || norm <= 0.0 || up_base.z() / norm < std::cos(max_tilt))
+  if (!up_base.allFinite() || norm <= 0.0 || up_base.z() <= 0.0)
     return transform_and_detect(cloud_lidar, T_base_lidar_);
   // R rotates the measured up onto +z about the base origin (no yaw change).
   Eigen::Isometry3d level = Eigen::Isometry3d::Identity();

@@ -81,16 +81,46 @@ std::string default_detector(const std::filesystem::path& config) {
   return name;
 }
 
+namespace {
+
+void decode_pipeline_sections(const YAML::Node& root, detect::PipelineConfig& pipe,
+                              const std::string& file) {
+  YAML::Node pre = root["preprocess"];
+  // Before rownav 0.x the row profile was a key of `preprocess:` (it runs after the detector):
+  // still read there, but not in both places.
+  if (pre && pre.IsMap() && pre["row_profile"]) {
+    if (root["row_profile"]) {
+      const YAML::Mark m = pre["row_profile"].Mark();
+      throw InputError(file, std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1),
+                       "preprocess.row_profile: given twice: keep the top-level row_profile");
+    }
+    decode_section(pre["row_profile"], pipe.row_profile, file, "preprocess.row_profile");
+    pre = YAML::Clone(pre);
+    pre.remove("row_profile");
+  }
+  decode_section(pre, pipe.preprocess, file, "preprocess");
+  decode_section(root["row_profile"], pipe.row_profile, file, "row_profile");
+}
+
+}  // namespace
+
+detect::PipelineConfig load_pipeline_config(const std::filesystem::path& config) {
+  detect::PipelineConfig pipe;
+  const YAML::Node root = load_yaml_file(config);
+  if (root && root.IsMap()) decode_pipeline_sections(root, pipe, config.string());
+  return pipe;
+}
+
 detect::DetectionPipeline make_pipeline(const std::string& name,
                                         const std::filesystem::path& config,
                                         const Eigen::Isometry3d& T_base_lidar) {
-  preprocess::PreprocessConfig pre;
-  if (config.empty()) return {pre, registry().make(name, config), T_base_lidar};
+  detect::PipelineConfig pipe;
+  if (config.empty()) return {pipe, registry().make(name, config), T_base_lidar};
   const std::string file = config.string();
   const YAML::Node root = load_yaml_file(config);
-  auto detector = registry().make(name, root, file, {"preprocess", "detector"});
-  if (root && root.IsMap()) decode_section(root["preprocess"], pre, file, "preprocess");
-  return {pre, std::move(detector), T_base_lidar};
+  auto detector = registry().make(name, root, file, {"preprocess", "row_profile", "detector"});
+  if (root && root.IsMap()) decode_pipeline_sections(root, pipe, file);
+  return {pipe, std::move(detector), T_base_lidar};
 }
 
 }  // namespace rownav::io

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <variant>
 
@@ -144,7 +145,9 @@ core::RowObservation NavStack::detect_frame(Pending& frame, bool& levelled) {
   if (config_.stack.level_by_gravity) {
     const std::vector<core::ImuSample> imu(imu_.begin(), imu_.end());
     const double t0 = cloud.stamp;
-    if (const auto up = localize::gravity_up(imu, t0, t0 + sweep_period_, twist().v)) {
+    const auto up = localize::gravity_up(imu, t0, t0 + sweep_period_, twist().v);
+    const double max_tilt = config_.stack.max_level_tilt_deg * std::numbers::pi / 180.0;
+    if (up && up->allFinite() && up->norm() > 0.0 && up->z() / up->norm() >= std::cos(max_tilt)) {
       levelled = true;
       return pipeline.process(cloud, *up);
     }

@@ -11,7 +11,6 @@ void PreprocessConfig::validate() const {
   core::validate_nested(radius_outlier, "radius_outlier");
   core::validate_nested(statistical_outlier, "statistical_outlier");
   core::validate_nested(scan, "scan");
-  core::validate_nested(row_profile, "row_profile");
 }
 
 Preprocessor::Preprocessor(const PreprocessConfig& config)

@@ -19,6 +19,7 @@
 #include "rownav/detect/row_detector.hpp"
 #include "rownav/detect/pipeline.hpp"
 #include "rownav/io/detection_eval.hpp"
+#include "rownav/io/detector_registry.hpp"
 #include "rownav/io/row_labels.hpp"
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/preprocess/preprocessor.hpp"
@@ -242,11 +243,10 @@ inline CorridorScore score_corridor(const core::RowObservation& obs,
 
 // ---- Real corn rows (corn_rows_2d): the library's definitions (io::evaluate_corn) ----
 
-/// The row_crop preprocessing (`preprocess:` of config/detect/row_crop.yaml) in front of `det`.
+/// The row_crop preprocessing and row profile (config/detect/row_crop.yaml) around `det`.
 inline detect::DetectionPipeline row_crop_pipeline(std::unique_ptr<detect::RowDetector> det) {
   const auto file = std::filesystem::path(ROWNAV_SOURCE_DIR) / "config/detect/row_crop.yaml";
-  return detect::DetectionPipeline(io::load_config<preprocess::PreprocessConfig>(file, "preprocess"),
-                                   std::move(det));
+  return detect::DetectionPipeline(io::load_pipeline_config(file), std::move(det));
 }
 
 /// Forwards to a detector and keeps the corridor of every frame, by stamp (io::evaluate_corn

@@ -35,7 +35,7 @@ TEST(DetectorRegistry, UnknownNameListsTheKnownOnes) {
 }
 
 TEST(DetectorRegistry, EveryCropConfigLoadsWithEveryDetector) {
-  for (const char* crop : {"vineyard", "orchard", "row_crop"})
+  for (const char* crop : {"vineyard", "orchard", "row_crop", "market_garden"})
     for (const auto& name : detector_names()) {
       const fs::path file =
           fs::path(ROWNAV_SOURCE_DIR) / "config" / "detect" / (std::string(crop) + ".yaml");
@@ -61,6 +61,23 @@ TEST(DetectorRegistry, StrictKeysWithPositions) {
   const auto f5 = write_temp("custom", "baseline:\n  y_max: 0.5\n");
   EXPECT_NO_THROW(make_pipeline("baseline", f5));
   for (const auto& f : {f1, f2, f3, f4, f5}) fs::remove(f);
+}
+
+TEST(DetectorRegistry, TheRowProfileIsItsOwnSectionAndStillReadInsidePreprocess) {
+  const auto top = write_temp("profile_top", "row_profile:\n  min_points: 21\n");
+  EXPECT_EQ(load_pipeline_config(top).row_profile.min_points, 21);
+  // Where it was before it left the preprocessing (it runs after the detector).
+  const auto old = write_temp("profile_old", "preprocess:\n  row_profile:\n    min_points: 22\n");
+  EXPECT_EQ(load_pipeline_config(old).row_profile.min_points, 22);
+  EXPECT_NO_THROW(make_pipeline("baseline", old));
+  const auto both = write_temp("profile_both", "preprocess:\n  row_profile:\n    min_points: 22\n"
+                                               "row_profile:\n  min_points: 21\n");
+  const std::string e = error_of([&] { make_pipeline("baseline", both); });
+  EXPECT_NE(e.find(":3:5: preprocess.row_profile: given twice"), std::string::npos) << e;
+  const auto bad = write_temp("profile_bad", "row_profile:\n  min_points: -1\n");
+  EXPECT_NE(error_of([&] { make_pipeline("baseline", bad); }).find("row_profile.min_points"),
+            std::string::npos);
+  for (const auto& f : {top, old, both, bad}) fs::remove(f);
 }
 
 }  // namespace

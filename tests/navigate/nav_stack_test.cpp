@@ -122,6 +122,39 @@ TEST(NavStack, TheSameSamplesGiveBitIdenticalCommands) {
   }
 }
 
+/// Whether NavStack levels a 3D sweep when the IMU measures gravity tilted by `tilt_deg` about
+/// the base x axis (a roll), with StackConfig::max_level_tilt_deg at `max_deg`.
+bool levels_sweep_at(double tilt_deg, double max_deg) {
+  NavStackConfig c;
+  c.stack.mode = StackMode::detect;
+  c.stack.max_level_tilt_deg = max_deg;
+  NavStackParts parts;
+  parts.pipeline = std::make_unique<detect::DetectionPipeline>(io::make_pipeline("baseline", ""));
+  NavStack s(c, std::move(parts));
+  const double a = tilt_deg * std::numbers::pi / 180.0;
+  for (int k = 0; k <= 20; ++k) {
+    core::ImuSample imu;
+    imu.stamp = 0.9 + 0.01 * k;
+    imu.linear_acceleration = 9.81 * Eigen::Vector3d(0.0, std::sin(a), std::cos(a));
+    s.on_imu(imu);
+  }
+  core::PointCloud cloud;
+  cloud.stamp = 1.0;
+  for (int i = 0; i < 50; ++i)
+    cloud.points.push_back({2.0f + 0.1f * static_cast<float>(i), 0.9f, 0.5f, 0.0f, 0, 0, 0.0f});
+  s.on_cloud(cloud);
+  const NavCommand out = s.command(1.1);
+  EXPECT_TRUE(out.frame.has_value());
+  return out.frame && out.frame->levelled;
+}
+
+TEST(NavStack, LevelsASweepByGravityUpToTheConfiguredTilt) {
+  EXPECT_TRUE(levels_sweep_at(5.0, 30.0));
+  EXPECT_TRUE(levels_sweep_at(25.0, 30.0));
+  EXPECT_FALSE(levels_sweep_at(35.0, 30.0));  // beyond the default: not trusted
+  EXPECT_TRUE(levels_sweep_at(35.0, 40.0));   // the limit is the Config field's
+}
+
 TEST(NavStack, NeverCommandsMotionWithoutOdometry) {
   NavStack s = make_stack();
   for (const auto& c : drive(s, 0.5, false)) {

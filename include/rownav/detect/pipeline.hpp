@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "rownav/core/data_filter.hpp"
@@ -20,11 +21,27 @@ namespace rownav::detect {
 /// Planar part of a 3D mount: x, y and yaw of T_base_lidar (a 2D scanner is assumed level).
 Eigen::Isometry2d planar_mount(const Eigen::Isometry3d& T_base_lidar);
 
+/// Everything a DetectionPipeline is built from besides its detector: the `preprocess:` and
+/// `row_profile:` sections of a config/detect/<crop>.yaml file.
+struct PipelineConfig {
+  PipelineConfig() = default;
+  /// The preprocessing given, the row profile at its defaults.
+  PipelineConfig(preprocess::PreprocessConfig p) : preprocess(std::move(p)) {}  // NOLINT: implicit
+  preprocess::PreprocessConfig preprocess;  ///< the chain before the detector
+  /// after the detector: every row's centre line and canopy half width from the 3D cloud
+  /// (issue 10, detect/row_profile.hpp)
+  RowProfileConfig row_profile;
+  void validate() const {
+    core::validate_nested(preprocess, "preprocess");
+    core::validate_nested(row_profile, "row_profile");
+  }
+};
+
 /// Preprocessing + detection of one frame. Not thread-safe (buffers, detector state).
 class DetectionPipeline {
  public:
-  /// Throws std::invalid_argument for an invalid PreprocessConfig or a null detector.
-  DetectionPipeline(preprocess::PreprocessConfig config, std::unique_ptr<RowDetector> detector,
+  /// Throws std::invalid_argument for an invalid PipelineConfig or a null detector.
+  DetectionPipeline(const PipelineConfig& config, std::unique_ptr<RowDetector> detector,
                     const Eigen::Isometry3d& T_base_lidar = Eigen::Isometry3d::Identity());
 
   /// A 3D sweep in the LiDAR frame. Never throws.
@@ -34,7 +51,8 @@ class DetectionPipeline {
   /// terrain, so a vertical row seen at height h appears shifted sideways by h sin(roll): at
   /// 3 deg of roll, 5 cm for a 1 m canopy. The cloud is rotated about the base origin (on the
   /// ground) so that up_base becomes +z, and the rows are found where they meet the ground.
-  /// A non-finite, zero or > 30 deg tilted up_base is ignored (not levelled). Never throws.
+  /// A non-finite, zero or downward up_base is ignored (not levelled); how far a trusted tilt
+  /// may go is the caller's decision (NavStack: StackConfig::max_level_tilt_deg). Never throws.
   core::RowObservation process(const core::PointCloud& cloud_lidar, const Eigen::Vector3d& up_base);
   /// A planar scan in the LiDAR frame; the mount is applied in the plane (x, y, yaw). Never
   /// throws.

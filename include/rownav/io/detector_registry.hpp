@@ -33,6 +33,10 @@ std::unique_ptr<detect::RowDetector> make_detector(const std::string& name,
 /// `detector:`), else hough_skew (the empty path too). InputError on a bad file or an unknown name.
 std::string default_detector(const std::filesystem::path& config);
 
+/// The `preprocess:` and `row_profile:` sections of a detection config file (a row_profile
+/// inside `preprocess:`, where it was before, is still read). InputError on a bad file or key.
+detect::PipelineConfig load_pipeline_config(const std::filesystem::path& config);
+
 /// Builds the pipeline of detector `name` from a detection config file (empty path: every
 /// default). InputError on an unknown name, a bad file or a bad key.
 detect::DetectionPipeline make_pipeline(

@@ -88,6 +88,10 @@ struct StackConfig {
   /// Level each 3D sweep by the gravity the IMU measured during it (a rolling base shifts a row
   /// seen at height h by h sin(roll); rownav, BENCHMARK.md issue 4)
   bool level_by_gravity = true;
+  /// [deg] a gravity "up" tilted further than this from the base's z is not trusted and the
+  /// sweep is not levelled: no field robot drives a 58 % slope, so such a reading is the
+  /// accelerometer dominated by shocks or a mis-set IMU mount (rownav)
+  double max_level_tilt_deg = 30.0;
   /// [s] sweep duration for levelling when two successive sweep stamps do not give it
   /// (10 Hz: OS1, VLP-16 as in Nehme 2021 sec. 5)
   double sweep_period = 0.1;
@@ -118,6 +122,7 @@ struct StackConfig {
     v("mode", s.mode);
     v("odometry", s.odometry);
     v("level_by_gravity", s.level_by_gravity);
+    v("max_level_tilt_deg", s.max_level_tilt_deg);
     v("sweep_period", s.sweep_period);
     v("imu_history", s.imu_history);
     v("gyro_yaw_rate", s.gyro_yaw_rate);
@@ -132,6 +137,7 @@ struct StackConfig {
     v("planar_obstacles", s.planar_obstacles);
   }
   void validate() const {
+    core::check_range(max_level_tilt_deg, 0.0, 90.0, "max_level_tilt_deg");
     core::check_positive(sweep_period, "sweep_period");
     core::check_positive(imu_history, "imu_history");
     core::check_positive(gyro_max_age, "gyro_max_age");

@@ -17,7 +17,6 @@
 #include "rownav/core/point_cloud.hpp"
 #include "rownav/core/scan2d.hpp"
 #include "rownav/core/detector_input.hpp"
-#include "rownav/detect/row_profile.hpp"
 #include "rownav/preprocess/crop_box.hpp"
 #include "rownav/preprocess/ground.hpp"
 #include "rownav/preprocess/height_band.hpp"
@@ -39,9 +38,6 @@ struct PreprocessConfig {
   StatisticalOutlierConfig statistical_outlier; ///< off by default
   ScanProjectionConfig scan;                    ///< virtual scan (3D with use_scan)
   bool use_scan = false;  ///< 3D: points from a virtual 2D scan instead of the cloud's (x, y)
-  /// after the detector (DetectionPipeline): every row's centre line and canopy half width from
-  /// the 3D cloud (issue 10, detect/row_profile.hpp)
-  detect::RowProfileConfig row_profile;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -53,7 +49,6 @@ struct PreprocessConfig {
     v("statistical_outlier", s.statistical_outlier);
     v("scan", s.scan);
     v("use_scan", s.use_scan);
-    v("row_profile", s.row_profile);
   }
   void validate() const;
 };
