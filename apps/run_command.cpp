@@ -123,6 +123,10 @@ bool run_mission(const RunArgs& a) {
   if (a.row_end_policy) s.nav.navigator.row_ends.policy = *a.row_end_policy;
   if (a.place) s.nav.place.enabled = true;
   s.truth_labels = a.labels == "truth";
+  s.camera_labels = a.labels == "camera";
+  // Every plant surface of the run's single field (vine canopy, tree crowns, crops) looks like
+  // the target crop the default excess-green detector knows (class 0); there is no neighbour.
+  s.camera.canopy_colour = s.camera.crown_colour = s.camera.crop_colour;
   s.labeller.false_positive_rate = a.label_fp;
   s.labeller.false_negative_rate = a.label_fn;
   s.labeller.validate();
@@ -220,8 +224,10 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   c->add_flag("--place", a->place, "run the map stage (Emmi 2021 place, key locations; "
               "navigate config `place.enabled`)");
-  c->add_option("--labels", a->labels, "map stage labels: truth (default) or geometric")
-      ->check(CLI::IsMember({"truth", "geometric"}));
+  c->add_option("--labels", a->labels,
+                "map stage labels: truth (default), geometric or camera (a simulated camera, "
+                "excess-green boxes, Emmi 2021 Fig. 2b)")
+      ->check(CLI::IsMember({"truth", "geometric", "camera"}));
   c->add_option("--label-fp", a->label_fp, "truth labels' false-positive rate (default 0)");
   c->add_option("--label-fn", a->label_fn, "truth labels' false-negative rate (default 0)");
   c->add_option("--seed", a->seed, "simulation seed (default 1)");

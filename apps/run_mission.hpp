@@ -23,7 +23,8 @@ struct RunArgs {
   std::string controller = "stanley";
   std::optional<navigate::RowEndPolicy> row_end_policy;  ///< overrides the navigator config
   /// map stage (issue 12): `--place` turns it on over the navigation config; labels `truth`
-  /// (sim::TruthLabeller, with the false-positive / false-negative rates) or `geometric`
+  /// (sim::TruthLabeller, with the false-positive / false-negative rates), `geometric` or
+  /// `camera` (simulated camera + excess-green boxes + vision::CameraLabeller)
   bool place = false;
   std::string labels = "truth";
   double label_fp = 0.0, label_fn = 0.0;  ///< [-] truth labeller error rates

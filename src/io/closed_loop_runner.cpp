@@ -14,6 +14,8 @@
 #include "rownav/io/recording_replay.hpp"
 #include "rownav/io/nav_stack_setup.hpp"
 #include "rownav/sim/field_truth.hpp"
+#include "rownav/vision/camera_labeller.hpp"
+#include "rownav/vision/excess_green_detector.hpp"
 
 namespace rownav::io {
 
@@ -56,6 +58,17 @@ class InputLog {
   std::array<std::size_t, 5> n_{};
 };
 
+/// Camera labels (issue 12): the simulated camera, the excess-green detector, the labeller.
+struct CameraLabels {
+  CameraLabels(const sim::PinholeCameraConfig& camera, int every, std::uint64_t seed)
+      : camera(camera, seed), every(every) {}
+  sim::PinholeCamera camera;
+  vision::ExcessGreenDetector detector;
+  vision::CameraLabeller labeller;
+  int every = 1;
+  int sweeps = 0;  // since the last image
+};
+
 /// Hands the simulator's samples to the stack (and the input log) and collects the metrics.
 class RunnerSink : public sim::SimSink {
  public:
@@ -64,7 +77,10 @@ class RunnerSink : public sim::SimSink {
       : stack_(stack), sim_(sim), result_(result), log_(log),
         T_base_lidar_(setup.sensors.lidar.T_base_lidar().cast<float>()) {
     const sim::Field& field = *setup.field;
-    if (setup.nav.place.enabled && setup.truth_labels)
+    if (setup.nav.place.enabled && setup.camera_labels)
+      camera_.emplace(setup.camera, std::max(1, setup.camera_every),
+                      setup.sensors.seed + kLabellerSeedOffset);
+    else if (setup.nav.place.enabled && setup.truth_labels)
       labeller_.emplace(setup.labeller, setup.sensors.seed + kLabellerSeedOffset);
     for (const auto& p : field.plants)
       if (p.kind == sim::PlantKind::post || p.kind == sim::PlantKind::end_post) posts_.push_back(p);
@@ -126,9 +142,17 @@ class RunnerSink : public sim::SimSink {
   std::vector<map::PointLabel> labels(const core::PointCloud& c,
                                       const std::vector<sim::SurfaceClass>& classes) {
     std::vector<map::PointLabel> out;
-    if (!labeller_) return out;
+    if (!labeller_ && !camera_) return out;
     points_base_.clear();
     for (const auto& p : c.points) points_base_.push_back(T_base_lidar_ * Eigen::Vector3f(p.x, p.y, p.z));
+    if (camera_) {
+      if (camera_->sweeps++ % camera_->every == 0)  // a new image: the first sweep, then every n
+        camera_->labeller.set_image(  // the image at the robot's pose when the sweep arrives
+            camera_->camera.render(sim_.world(), sim_.pose3d(sim_.robot_state().pose), c.stamp),
+            camera_->detector);
+      camera_->labeller.label(points_base_, out);
+      return out;
+    }
     labeller_->set_frame(sim_.robot_state().pose, classes);
     labeller_->label(points_base_, out);
     return out;
@@ -141,6 +165,7 @@ class RunnerSink : public sim::SimSink {
   InputLog* log_;
   Eigen::Isometry3f T_base_lidar_;
   std::optional<sim::TruthLabeller> labeller_;
+  std::optional<CameraLabels> camera_;
   std::vector<Eigen::Vector3f> points_base_;
   std::vector<sim::Plant> posts_;
   navigate::NavState state = navigate::NavState::in_row;

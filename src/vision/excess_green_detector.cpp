@@ -124,10 +124,8 @@ ExcessGreenDetector::ExcessGreenDetector(const ExcessGreenDetectorConfig& config
   config_.validate();
 }
 
-void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Detection>& out) {
-  out.clear();
-  if (!image.valid()) return;
-  const auto n = static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height());
+void ExcessGreenDetector::chromaticity(const core::CameraImage& image) {
+  const std::size_t n = image.rgb.size() / 3;
   exg_.resize(n);
   exg8_.resize(n);
   pixel_class_.resize(n);
@@ -147,6 +145,13 @@ void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Det
     exg8_[i] = exg_to_byte(exg_[i]);
     nearest_[i] = nearest_class(config_.classes, r, g, config_.max_class_distance);
   }
+}
+
+void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Detection>& out) {
+  out.clear();
+  if (!image.valid()) return;
+  const std::size_t n = image.rgb.size() / 3;
+  chromaticity(image);
   try {
     double t = config_.exg_threshold;
     if (config_.otsu) {
@@ -169,8 +174,8 @@ void ExcessGreenDetector::detect(const core::CameraImage& image, std::vector<Det
       cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, close);
       components_to_boxes(mask, static_cast<int>(k), config_, out);
     }
-  } catch (const cv::Exception&) {
-    out.clear();  // per-frame code does not throw: no boxes this frame
+  } catch (...) {  // cv::Exception, bad_alloc: per-frame code does not throw
+    out.clear();   // no boxes this frame
   }
 }
 

@@ -19,6 +19,7 @@
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/robot.hpp"
 #include "rownav/sim/simulator.hpp"
+#include "rownav/sim/pinhole_camera.hpp"
 #include "rownav/sim/truth_labeller.hpp"
 #include "rownav/track/row_tracker.hpp"
 
@@ -58,6 +59,13 @@ struct ClosedLoopSetup {
   /// (a stand-in for Emmi 2021's camera detector, Fig. 2b); false: NavStack's geometric default
   bool truth_labels = true;
   sim::TruthLabellerConfig labeller;
+  /// Camera labels instead (`rownav run --labels camera`, issue 12): a simulated camera
+  /// (`camera`, sim::PinholeCamera) rendered at every `camera_every`-th sweep, its
+  /// vision::ExcessGreenDetector boxes, every sweep labelled by vision::CameraLabeller from the
+  /// last image (Emmi 2021 Fig. 2b: several laser frames from one image). Overrides truth_labels.
+  bool camera_labels = false;
+  sim::PinholeCameraConfig camera;
+  int camera_every = 5;  ///< [-] sweeps per image (10 Hz LiDAR: a 2 Hz camera) (rownav)
   std::function<void(double sim_time, double fraction)> progress;  ///< optional
 };
 

@@ -81,6 +81,9 @@ class ExcessGreenDetector : public ImageDetector {
   const ExcessGreenDetectorConfig& config() const { return config_; }
 
  private:
+  /// ExG, its byte for Otsu and the nearest class of every pixel.
+  void chromaticity(const core::CameraImage& image);
+
   ExcessGreenDetectorConfig config_;
   double last_threshold_ = 0.0;
   std::vector<float> exg_;                 // per pixel, NaN for dark pixels
