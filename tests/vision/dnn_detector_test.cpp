@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "vision/tiny_onnx.hpp"
 #include "vision/tiny_yolo.hpp"
 
 namespace rownav::vision {
@@ -75,6 +76,42 @@ TEST_F(DnnDetectorTest, TheTinyNetworkFindsColouredBlocksInTheirGridCells) {
     }
     EXPECT_NE(out[0].class_id, out[1].class_id);
   }
+}
+
+/// Uniform image of side 128 px.
+core::CameraImage uniform_image(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  core::CameraImage img;
+  img.intrinsics.width = img.intrinsics.height = 128;
+  img.rgb.resize(128 * 128 * 3);
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3)
+    img.rgb[i] = r, img.rgb[i + 1] = g, img.rgb[i + 2] = b;
+  return img;
+}
+
+TEST_F(DnnDetectorTest, AnOnnxYoloModelWithPixelBoxesLoadsAndDetects) {
+  const fs::path onnx = dir_ / "tiny.onnx";
+  test::write_tiny_onnx(onnx);
+  DnnDetectorConfig c;
+  c.model_path = onnx.string();
+  c.input_width = c.input_height = 32;
+  c.normalised_boxes = false;    // the box is in input pixels (YOLOv5-style export)
+  c.multiply_objectness = true;  // score = objectness x class
+  DnnDetector det(c);
+  EXPECT_EQ(det.class_count(), 2);
+  std::vector<Detection> out;
+  det.detect(uniform_image(0, 255, 0), out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].class_id, 0);
+  EXPECT_NEAR(out[0].score, 1.0f, 0.01f);
+  // The 8 px box at the 32 px input's centre, scaled to the 128 px image: [48, 80).
+  EXPECT_NEAR(out[0].u_min, 48.0f, 0.5f);
+  EXPECT_NEAR(out[0].u_max, 80.0f, 0.5f);
+  EXPECT_NEAR(out[0].v_min, 48.0f, 0.5f);
+  det.detect(uniform_image(0, 0, 255), out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].class_id, 1);
+  det.detect(uniform_image(0, 90, 0), out);  // score 0.35^2 < 0.5
+  EXPECT_TRUE(out.empty());
 }
 
 TEST_F(DnnDetectorTest, ABlackImageHasNoDetectionsAndABadImageNoneEither) {
