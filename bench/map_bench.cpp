@@ -5,10 +5,18 @@
 // the transition detection success rate (DSR), the key locations' mean distance error (MDE) and
 // orthogonal error (Orth_E). Not a Google Benchmark: own main.
 //   build/map_bench [seeds] [false_positive_rate] [false_negative_rate] [v: list transitions]
+//                   [labels: truth | blind | camera] [n: a neighbouring field of another crop]
+// Issue 12's camera: `camera` labels the points by the simulated camera (every 5th frame),
+// excess-green boxes and vision::CameraLabeller (B1 only: the paper's vineyard detector sees
+// trunks, the excess-green one the canopy); `blind` is the truth labeller without the target
+// region (every crop is the target crop: a labeller that cannot tell crops apart). With `n`, a
+// second B1 field (another seed) lies 1.5 m beyond the target's last row, its plants drawn in the
+// camera's other-crop colour and `other_crop` for the truth labeller.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "map_fields.hpp"
@@ -17,7 +25,10 @@
 #include "rownav/sim/lidar.hpp"
 #include "rownav/sim/lidar_presets.hpp"
 #include "rownav/sim/ray_caster.hpp"
+#include "rownav/sim/pinhole_camera.hpp"
 #include "rownav/sim/truth_labeller.hpp"
+#include "rownav/vision/camera_labeller.hpp"
+#include "rownav/vision/excess_green_detector.hpp"
 
 namespace {
 
@@ -102,6 +113,11 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> nearest_end(const sim::FieldTruth& t
 }
 
 bool g_verbose = false;  // 4th argument "v": every true and validated transition
+enum class Labels { truth, blind, camera };
+Labels g_labels = Labels::truth;  // 5th argument
+bool g_neighbour = false;         // 6th argument "n"
+constexpr double kNeighbourGap = 1.5;  // [m] target's last row to the neighbour's first
+constexpr int kCameraEvery = 5;        // frames per camera image (0.25 m of travel)
 int g_debug_frames = 60;  // ... and the first frames whose filtered place is wrong
 
 /// One mission: poses, true and validated places, true transitions, the estimator's map.
@@ -134,10 +150,45 @@ map::PlaceEstimatorConfig estimator_config(const sim::Field& field, double eps) 
   return pc;
 }
 
+/// The world mesh: the field, and with g_neighbour a second one (another seed) beyond it; the
+/// target region (world x, y) of the field's own plants into lo / hi.
+sim::TriangleMesh world_mesh(const rownav::bench_map::MapField& f, const sim::Field& field,
+                             Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+  sim::TriangleMesh mesh = field.mesh;
+  const Eigen::AlignedBox2d rows = field.row_bounds();
+  lo = rows.min() - Eigen::Vector2d(100.0, 0.5 * kNeighbourGap);
+  hi = rows.max() + Eigen::Vector2d(100.0, 0.5 * kNeighbourGap);
+  if (!g_neighbour) return mesh;
+  auto other = f.config;
+  other.seed += 1000;
+  const float dy = float(rows.max().y() - rows.min().y() + kNeighbourGap);
+  mesh.append(sim::generate_field(other).mesh,
+              Eigen::Isometry3f(Eigen::Translation3f(0.0f, dy, 0.0f)));
+  return mesh;
+}
+
+/// The camera chain of issue 12 (Emmi 2021 Fig. 2b).
+struct CameraChain {
+  CameraChain(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::uint64_t seed)
+      : camera(config(lo, hi), seed) {}
+  static sim::PinholeCameraConfig config(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+    sim::PinholeCameraConfig c;
+    c.use_target_region = true;
+    c.target_min = lo;
+    c.target_max = hi;
+    return c;
+  }
+  sim::PinholeCamera camera;
+  rownav::vision::ExcessGreenDetector detector;
+  rownav::vision::CameraLabeller labeller;
+};
+
 Mission simulate(const rownav::bench_map::MapField& f, std::uint64_t seed, double fp, double fn) {
   const sim::Field field = sim::generate_field(f.config);
   const sim::FieldTruth truth(field);
-  const sim::RayCaster world(field.mesh);
+  Eigen::Vector2d lo, hi;
+  const sim::RayCaster world(world_mesh(f, field, lo, hi));
+  CameraChain cam(lo, hi, seed + 2);
   sim::LidarConfig lc = sim::lidar_preset("lms_1081");
   lc.mount_xyz = {0.3, 0.0, f.scanner_height};
   lc.motion_during_sweep = false;
@@ -145,6 +196,9 @@ Mission simulate(const rownav::bench_map::MapField& f, std::uint64_t seed, doubl
   sim::TruthLabellerConfig tc;
   tc.false_positive_rate = fp;
   tc.false_negative_rate = fn;
+  tc.use_target_region = g_labels == Labels::truth;
+  tc.target_min = lo;
+  tc.target_max = hi;
   sim::TruthLabeller labeller(tc, seed + 1);
   map::PlaceEstimator est(estimator_config(field, f.dbscan_eps));
   Mission m;
@@ -158,8 +212,13 @@ Mission simulate(const rownav::bench_map::MapField& f, std::uint64_t seed, doubl
     const Eigen::Isometry3d iso = T.to_isometry();
     scan_points(lidar.scan(world, [&](double) { return iso; }, stamp, &beam), beam, lc.mount_xyz,
                 pts, classes);
-    labeller.set_frame(T, classes);
-    labeller.label(pts, labels);
+    if (g_labels == Labels::camera) {
+      if (i % kCameraEvery == 0) cam.labeller.set_image(cam.camera.render(world, iso, stamp), cam.detector);
+      cam.labeller.label(pts, labels);
+    } else {
+      labeller.set_frame(T, classes);
+      labeller.label(pts, labels);
+    }
     const map::PlaceEstimate pe = est.update(pts, labels, T, stamp);
     m.est_place.push_back(map::filtered_index(pe.place));
     m.true_place.push_back(place_index(truth.at(T, stamp, 0.0).place));
@@ -244,9 +303,13 @@ int main(int argc, char** argv) {
   const double fp = argc > 2 ? std::atof(argv[2]) : 0.01;
   const double fn = argc > 3 ? std::atof(argv[3]) : 0.1;
   g_verbose = argc > 4 && argv[4][0] == 'v';
+  const std::string labels = argc > 5 ? argv[5] : "truth";
+  g_labels = labels == "camera" ? Labels::camera : labels == "blind" ? Labels::blind : Labels::truth;
+  g_neighbour = argc > 6 && argv[6][0] == 'n';
   std::printf("| field | seed | frames acc. | DSR | true / detected / false | MDE [m] | Orth_E [m] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const auto& mk : {rownav::bench_map::field_b1, rownav::bench_map::field_v1}) {
+    if (g_labels == Labels::camera && mk == rownav::bench_map::field_v1) continue;  // B1 only
     std::vector<double> acc, dsr, mde, orth;
     std::string name;
     for (int s = 1; s <= seeds; ++s) {
