@@ -196,7 +196,7 @@ Mission simulate(const rownav::bench_map::MapField& f, std::uint64_t seed, doubl
   sim::TruthLabellerConfig tc;
   tc.false_positive_rate = fp;
   tc.false_negative_rate = fn;
-  tc.use_target_region = g_labels == Labels::truth;
+  tc.use_target_region = g_neighbour && g_labels == Labels::truth;  // as before without one
   tc.target_min = lo;
   tc.target_max = hi;
   sim::TruthLabeller labeller(tc, seed + 1);
