@@ -6,6 +6,7 @@
 // orthogonal error (Orth_E). Not a Google Benchmark: own main.
 //   build/map_bench [seeds] [false_positive_rate] [false_negative_rate] [v: list transitions]
 //                   [labels: truth | blind | camera] [n: a neighbouring field of another crop]
+//                   [a: then drive the alley beside the last row, 0.75 m from it]
 // Issue 12's camera: `camera` labels the points by the simulated camera (every 5th frame),
 // excess-green boxes and vision::CameraLabeller (B1 only: the paper's vineyard detector sees
 // trunks, the excess-green one the canopy); `blind` is the truth labeller without the target
@@ -41,6 +42,8 @@ constexpr double kLeadIn = 2.5;       // [m] start before the first lane
 constexpr double kTurnOut = 1.0;      // [m] straight beyond a row end before the U-turn
 constexpr double kBand = 0.5;         // [m] accuracy excludes this around true transitions
 constexpr double kMatchRadius = 1.0;  // [m] a validated transition this close matches a true one
+constexpr double kNeighbourGap = 1.5;  // [m] target's last row to the neighbour's first
+bool g_alley = false;  // 7th argument "a": the alley pass after the serpentine
 
 void straight(std::vector<Pose2>& out, Eigen::Vector2d a, Eigen::Vector2d b) {
   const Eigen::Vector2d d = b - a;
@@ -84,6 +87,22 @@ std::vector<Pose2> serpentine(const sim::FieldTruth& truth) {
   return out;
 }
 
+/// From the serpentine's last pose: a U-turn into the alley beside the last row (half the
+/// neighbour gap from it: between the field and its neighbour) and along it past the row end.
+void alley_pass(std::vector<Pose2>& out, const sim::Field& field) {
+  const auto& row = field.rows.back().polyline;  // rows ordered by y: the last is beside the alley
+  const Eigen::Vector2d off(0.0, 0.5 * kNeighbourGap);
+  const Pose2 end = out.back();
+  const Eigen::Vector2d t(std::cos(end.theta), std::sin(end.theta));
+  const Eigen::Vector2d from = end.translation();
+  const bool forward = t.x() < 0.0;  // heading back to x = 0: the alley is driven towards +x
+  const Eigen::Vector2d a = (forward ? row.front() : row.back()) + off;
+  const Eigen::Vector2d b = (forward ? row.back() : row.front()) + off;
+  const Eigen::Vector2d entry(from.x(), a.y());
+  u_turn(out, from, entry, t);
+  straight(out, entry, b - kTurnOut * t);
+}
+
 int place_index(sim::Place p) { return p == sim::Place::lane ? 1 : p == sim::Place::alley ? 2 : 0; }
 
 struct TrueTransition {
@@ -109,6 +128,13 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> nearest_end(const sim::FieldTruth& t
     for (const auto& e : {c.front(), c.back()})
       if ((e - p).norm() < bd) bd = (e - p).norm(), best = {e, t};
   }
+  if (g_alley) {  // the alley's ends: half a lane width beyond the last row (Emmi 2021 eq. 2-3)
+    const auto& row = truth.field().rows.back().polyline;
+    const Eigen::Vector2d t = (row.back() - row.front()).normalized();
+    const Eigen::Vector2d off(0.0, 0.5 * truth.field().row_spacing);
+    for (const auto& e : {Eigen::Vector2d(row.front() + off), Eigen::Vector2d(row.back() + off)})
+      if ((e - p).norm() < bd) bd = (e - p).norm(), best = {e, t};
+  }
   return best;
 }
 
@@ -116,7 +142,6 @@ bool g_verbose = false;  // 4th argument "v": every true and validated transitio
 enum class Labels { truth, blind, camera };
 Labels g_labels = Labels::truth;  // 5th argument
 bool g_neighbour = false;         // 6th argument "n"
-constexpr double kNeighbourGap = 1.5;  // [m] target's last row to the neighbour's first
 constexpr int kCameraEvery = 5;        // frames per camera image (0.25 m of travel)
 int g_debug_frames = 60;  // ... and the first frames whose filtered place is wrong
 
@@ -203,6 +228,7 @@ Mission simulate(const rownav::bench_map::MapField& f, std::uint64_t seed, doubl
   map::PlaceEstimator est(estimator_config(field, f.dbscan_eps));
   Mission m;
   m.poses = serpentine(truth);
+  if (g_alley) alley_pass(m.poses, field);
   std::vector<Eigen::Vector3f> pts;
   std::vector<sim::SurfaceClass> classes, beam;
   std::vector<map::PointLabel> labels;
@@ -306,10 +332,12 @@ int main(int argc, char** argv) {
   const std::string labels = argc > 5 ? argv[5] : "truth";
   g_labels = labels == "camera" ? Labels::camera : labels == "blind" ? Labels::blind : Labels::truth;
   g_neighbour = argc > 6 && argv[6][0] == 'n';
+  g_alley = argc > 7 && argv[7][0] == 'a';
   std::printf("| field | seed | frames acc. | DSR | true / detected / false | MDE [m] | Orth_E [m] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const auto& mk : {rownav::bench_map::field_b1, rownav::bench_map::field_v1}) {
-    if (g_labels == Labels::camera && mk == rownav::bench_map::field_v1) continue;  // B1 only
+    if ((g_labels == Labels::camera || g_alley) && mk == rownav::bench_map::field_v1)
+      continue;  // B1 only
     std::vector<double> acc, dsr, mde, orth;
     std::string name;
     for (int s = 1; s <= seeds; ++s) {
