@@ -51,25 +51,41 @@ BoxCount count_scan(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& 
 // one plane stop at the first thing they meet: a weed or a leaf in the lane ahead hides the box
 // as completely as the headland's open ground empties it, and only the second is a row end
 // (issue 11: "many" weeds in a 0.8 m vegetable bed ended the row 3.5 m early). Bins of
-// shadow_bin_deg over the box's angular span seen from the base; a bin is shadowed when its
-// nearest return lies before the box (x < box_x_min) inside the band.
-double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw) {
-  const double span = std::atan2(hw, c.box_x_min);  // half span of the box's near edge
+// shadow_bin_deg over the box's angular span seen from the scanner (a weed touching it hides
+// the whole box); a bin is shadowed when its nearest return lies before the box (x < box_x_min)
+// inside the band.
+double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw,
+                      const Eigen::Vector2f& sensor) {
+  const double dx = c.box_x_min - double(sensor.x());
+  if (!(dx > 0.0)) return 0.0;  // the scanner at or beyond the box: nothing can hide it
+  const double lo = std::atan2(-hw - double(sensor.y()), dx);
+  const double hi = std::atan2(hw - double(sensor.y()), dx);
   const double bin = c.shadow_bin_deg * std::numbers::pi / 180.0;
-  const int n = std::max(1, static_cast<int>(std::ceil(2.0 * span / bin)));
+  const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) / bin)));
   std::vector<double> nearest(static_cast<std::size_t>(n), 1e300);
   std::vector<char> near_hit(static_cast<std::size_t>(n), 0);
   for (const auto& p : pts) {
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || p.x() <= 0.0f) continue;
-    const double a = std::atan2(double(p.y()), double(p.x()));
-    if (std::abs(a) >= span) continue;
-    const auto k = static_cast<std::size_t>(std::clamp(int((a + span) / bin), 0, n - 1));
-    const double r = std::hypot(double(p.x()), double(p.y()));
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || p.x() <= sensor.x()) continue;
+    const Eigen::Vector2f q = p - sensor;
+    const double a = std::atan2(double(q.y()), double(q.x()));
+    if (a <= lo || a >= hi) continue;
+    const auto k = static_cast<std::size_t>(std::clamp(int((a - lo) / bin), 0, n - 1));
+    const double r = std::hypot(double(q.x()), double(q.y()));
     if (r < nearest[k]) nearest[k] = r, near_hit[k] = p.x() < c.box_x_min && std::abs(p.y()) <= hw;
   }
   int shadowed = 0;
   for (const char h : near_hit) shadowed += h ? 1 : 0;
   return double(shadowed) / n;
+}
+
+// Planar scan: returns beside the robot (x in [0, box_x_min), inside the half width).
+int count_near(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw) {
+  int n = 0;
+  for (const auto& p : pts)
+    if (std::isfinite(p.x()) && std::isfinite(p.y()) && p.x() >= 0.0f && p.x() < c.box_x_min &&
+        std::abs(p.y()) <= hw)
+      ++n;
+  return n;
 }
 
 // The followed rows' extent: the nearest and the farthest x_max of the followed rows, when
@@ -105,6 +121,8 @@ void EndOfRowConfig::validate() const {
   core::check_range(max_shadowed, 0.0, 1.0, "max_shadowed");
   core::check_range(shadow_bin_deg, 0.05, 45.0, "shadow_bin_deg");
   core::check_positive(extent_distance, "extent_distance");
+  core::check_range(blind_near_ratio, 0.0, 1.0, "blind_near_ratio");
+  core::check_positive(blind_history, "blind_history");
 }
 
 EndOfRowDetector::EndOfRowDetector(const EndOfRowConfig& config)
@@ -114,16 +132,38 @@ void EndOfRowDetector::reset() {
   positives_ = 0;
   previous_count_ = -1;
   declared_ = false;
+  near_counts_.clear();
+}
+
+bool EndOfRowDetector::blind(std::span<const Eigen::Vector2f> returns, double hw) {
+  const int near = count_near(returns, config_, hw);
+  bool blind = false;
+  if (!near_counts_.empty()) {
+    std::vector<int> v(near_counts_.begin(), near_counts_.end());
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    blind = near < config_.blind_near_ratio * v[v.size() / 2];
+  }
+  if (blind) return true;  // a blind frame does not lower the reference
+  near_counts_.push_back(near);
+  while (static_cast<int>(near_counts_.size()) > config_.blind_history) near_counts_.pop_front();
+  return false;
 }
 
 EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
                                         std::span<const Eigen::Vector2f> points_base,
-                                        const track::RowTracking& tracking) {
+                                        const track::RowTracking& tracking,
+                                        const Eigen::Vector2f& sensor_base) {
   const EndOfRowConfig& c = config_;
   const double hw = half_width(c, tracking);
   const bool planar = cloud_base.empty();
-  const BoxCount n = planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw);
   EndOfRowResult r;
+  if (planar && blind(points_base, hw)) {  // no evidence either way (the count keeps its state)
+    r.blind = true;
+    r.end_detected = declared_;
+    r.confidence = declared_ ? 1.0 : std::min(1.0, double(positives_) / c.confirm_frames);
+    return r;
+  }
+  const BoxCount n = planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw);
   r.box_points = n.left + n.right;
   r.left_points = planar ? 0 : n.left;
   r.right_points = planar ? 0 : n.right;
@@ -136,13 +176,15 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   // end where they all end, a gap of missing trees in one row is no row end (issue 10).
   const std::optional<Extent> extent = followed_extent(tracking);
   const bool rows_continue = extent && extent->farthest > c.box_x_max;
+  // A planar scan's view of the box hidden by something nearer: neither cue is evidence (the
+  // rows' tracked extent ends where the occluder hides them, too).
+  const bool seen = !planar || shadowed_share(points_base, c, hw, sensor_base) <= c.max_shadowed;
   const bool count_end =
-      !rows_continue &&
-      (planar ? r.box_points < c.scan_point_threshold &&
-                    shadowed_share(points_base, c, hw) <= c.max_shadowed
+      !rows_continue && seen &&
+      (planar ? r.box_points < c.scan_point_threshold
               : n.left < c.point_threshold && n.right < c.point_threshold);
   // Extent cue: every followed row ends (a gap in one row ends that row's support only).
-  const bool extent_end = c.use_extent && extent && extent->farthest < c.extent_distance;
+  const bool extent_end = c.use_extent && seen && extent && extent->farthest < c.extent_distance;
   r.frame_positive = count_end || extent_end;
   positives_ = r.frame_positive ? positives_ + 1 : 0;
   declared_ = declared_ || positives_ >= c.confirm_frames;

@@ -173,7 +173,9 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
   if (place_) estimate_place(frame, r, *pose);
   if (config_.stack.mode == StackMode::track) return r;
   const auto& p = *parts_.pipeline;
-  r.end_of_row = end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking);
+  r.end_of_row =
+      end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking,
+                          p.T_base_lidar().translation().head<2>().cast<float>());
   return r;
 }
 
@@ -228,14 +230,15 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
     in.obstacle_points_base = std::span<const Eigen::Vector2f>();  // drives over them
   }
   in.robot = config_.robot;
+  in.obstacle_distance = control::front_obstacle_distance(
+      in.obstacle_points_base.value_or(in.points_base), config_.stack.front);
   NavOutput out = navigator_->step(in);
   if (out.control) {
     control::ControlInput c = *out.control;
     // The controllers integrate over the time since the previous frame (Malavazi 2018 2.3.5).
     const double dt = last_frame_stamp_ ? report.stamp - *last_frame_stamp_ : sweep_period_;
     c.dt = std::clamp(dt, 1e-3, config_.stack.max_frame_dt);
-    c.obstacle_distance = control::front_obstacle_distance(
-        in.obstacle_points_base.value_or(in.points_base), config_.stack.front);
+    c.obstacle_distance = in.obstacle_distance;
     out.cmd = parts_.controller->compute(c);
     if (!std::isfinite(out.cmd.v) || !std::isfinite(out.cmd.omega)) out.cmd = {};
   }

@@ -77,6 +77,8 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(narrow_margin, "narrow_margin");
   core::check_non_negative(stop_distance, "stop_distance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
+  core::check_positive(blocked_timeout, "blocked_timeout");
+  core::check_non_negative(blocked_speed, "blocked_speed");
   core::check_positive(entry_check_depth, "entry_check_depth");
   core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
               "must be > entry_check_depth");
@@ -217,6 +219,18 @@ std::optional<std::string> Navigator::obstacle_ahead(const NavInput& in) const {
          fmt(y_hi) + " m";
 }
 
+std::optional<std::string> Navigator::held_by_obstacle(const NavInput& in) {
+  if (!std::isfinite(in.obstacle_distance) || std::abs(in.twist.v) >= config_.blocked_speed) {
+    blocked_since_.reset();
+    return std::nullopt;
+  }
+  if (!blocked_since_) blocked_since_ = in.stamp;
+  if (in.stamp - *blocked_since_ < config_.blocked_timeout) return std::nullopt;
+  return "blocked for " + fmt(in.stamp - *blocked_since_) + " s by an obstacle " +
+         fmt(in.obstacle_distance) + " m ahead of the front (fewer than " +
+         std::to_string(config_.obstacle_min_points) + " points: not in the stop box)";
+}
+
 void Navigator::in_row(const NavInput& in, NavOutput& out) {
   const bool seen = in.observation.status != core::DetectionStatus::no_rows &&
                     in.tracking.status != track::TrackStatus::lost;
@@ -230,6 +244,8 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
                          : ""));
   if (const auto obstacle = obstacle_ahead(in))
     return stop(StopReason::obstacle, out, in.stamp, *obstacle);
+  if (const auto blocked = held_by_obstacle(in))
+    return stop(StopReason::obstacle, out, in.stamp, *blocked);
   ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
   check_lane(in, out);
   control::ControlInput c;
@@ -250,6 +266,7 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   if (!at_rows_) out.reset_end_of_row = true;
   if (in.end_of_row.end_detected && centre && at_rows_) {
     state_ = NavState::exiting;
+    blocked_since_.reset();
     exit_distance_ = exit_distance(in);
     if (!ends_.end_arc()) {  // no row end seen: the detector's distance, else the box's near edge
       const double ahead = in.end_of_row.distance_to_end.value_or(end_box_near_);

@@ -162,7 +162,10 @@ TEST(NearestRow2d, EveryCorridorDetectorPicksTheNearestRow) {
   const bool verbose = std::getenv("ROWNAV_NEAREST_VERBOSE") != nullptr;
   std::map<std::string, KnownMiss> misses;
   for (const auto& m : kKnownMisses) misses[m.detector] = m;
+  // ROWNAV_NEAREST_ONLY=name: that detector alone (while working on it; the rest is skipped).
+  const char* only = std::getenv("ROWNAV_NEAREST_ONLY");
   for (const auto& d : io::detector_names()) {
+    if (only && d != only) continue;
     const Rates r = measure(d, verbose);
     std::printf("[%s 2D nearest row] %d frames: gross %.2f %%, skipped near row %.2f %%, "
                 "no corridor %.2f %%\n", d.c_str(), r.frames, 100 * r.gross_rate(),

@@ -264,12 +264,68 @@ TEST(EndOfRow, PlanarScanShadowedByAWeedAheadIsNoEvidence) {
   EXPECT_FALSE(r.end_detected);
 }
 
+TEST(EndOfRow, APlanarBoxIsShadowedAsSeenFromTheScannerNotFromTheBase) {
+  // A weed touching a scanner at the robot's front (x = 0.35 m): from the scanner it hides the
+  // whole box, from the base origin a few degrees of it (issue 11).
+  EndOfRowConfig c;
+  c.box_x_min = 1.0, c.box_x_max = 2.0;
+  std::vector<Eigen::Vector2f> pts;  // rows 1.5 m apart ending 0.8 m ahead, the weed
+  for (double x = 0.3; x < 0.8; x += 0.005)
+    for (const double y : {-0.75, 0.75}) pts.emplace_back(float(x), float(y));
+  // one return per beam of a 0.25 deg scanner 0.07 m away
+  for (double y = -0.06; y <= 0.06; y += 0.0003) pts.emplace_back(0.42f, float(y));
+  EndOfRowDetector from_base(c), from_scanner(c);
+  EndOfRowResult rb, rs;
+  for (int k = 0; k < 2 * c.confirm_frames; ++k) {
+    rb = from_base.update(core::PointCloud{}, pts, no_tracking());
+    rs = from_scanner.update(core::PointCloud{}, pts, no_tracking(), Eigen::Vector2f(0.35f, 0.0f));
+  }
+  EXPECT_TRUE(rb.end_detected);  // the old reading: the box empty, so the row ended
+  EXPECT_FALSE(rs.frame_positive);
+  EXPECT_FALSE(rs.end_detected);
+}
+
+TEST(EndOfRow, ABlindPlanarFrameNeitherConfirmsNorClearsTheEnd) {
+  // The scanner inside a weed taller than its mount: almost no returns anywhere, the rows beside
+  // the robot gone too. At a row end they are still seen (issue 11).
+  EndOfRowConfig c;
+  c.box_x_min = 1.0, c.box_x_max = 2.0;
+  EndOfRowDetector d(c);
+  const auto in_row = planar_rows(5.0), at_end = planar_rows(0.8);
+  const std::vector<Eigen::Vector2f> blind{{0.35f, 0.0f}};
+  for (int k = 0; k < 10; ++k) EXPECT_FALSE(d.update(core::PointCloud{}, in_row, no_tracking()).frame_positive);
+  for (int k = 0; k < 2 * c.confirm_frames; ++k) {
+    const auto r = d.update(core::PointCloud{}, blind, no_tracking());
+    EXPECT_TRUE(r.blind);
+    EXPECT_FALSE(r.frame_positive);
+    EXPECT_FALSE(r.end_detected);
+  }
+  // Evidence before a blind spell still counts after it: the count is kept, not reset.
+  EXPECT_FALSE(d.update(core::PointCloud{}, at_end, no_tracking()).blind);
+  d.update(core::PointCloud{}, blind, no_tracking());
+  EndOfRowResult r;
+  for (int k = 1; k < c.confirm_frames; ++k) r = d.update(core::PointCloud{}, at_end, no_tracking());
+  EXPECT_TRUE(r.end_detected);
+  // With the test off the same blind frames are an empty box.
+  c.blind_near_ratio = 0.0;
+  EndOfRowDetector off(c);
+  for (int k = 0; k < 10; ++k) off.update(core::PointCloud{}, in_row, no_tracking());
+  for (int k = 0; k < c.confirm_frames; ++k) r = off.update(core::PointCloud{}, blind, no_tracking());
+  EXPECT_TRUE(r.end_detected);
+}
+
 TEST(EndOfRow, ShadowSettingsAreValidated) {
   EndOfRowConfig c;
   c.max_shadowed = 1.5;
   EXPECT_THROW(c.validate(), std::invalid_argument);
   c = EndOfRowConfig{};
   c.shadow_bin_deg = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = EndOfRowConfig{};
+  c.blind_near_ratio = 1.5;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = EndOfRowConfig{};
+  c.blind_history = 0;
   EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 

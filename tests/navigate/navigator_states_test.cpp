@@ -126,5 +126,38 @@ TEST(NavigatorStates, EnteringWithoutSeeingACorridorStopsAtTheMaximumDepth) {
   EXPECT_EQ(r.states[r.states.size() - 2], NavState::entering);
 }
 
+// Something small in front (a weed: the controllers' front rectangle slows them to a halt from
+// 3 points, the stop box needs obstacle_min_points) holding the robot still in a row.
+TEST(NavigatorStates, AnObstacleThatHoldsTheRobotInARowEndsInASafeStopAfterTheTimeout) {
+  NavigatorConfig c;
+  Navigator nav(c, {0}, TurnSide::left);
+  const core::Pose2 T(2.0, 0.0, 0.0);
+  NavOutput out;
+  double t = 0.1;
+  for (; t < 2.0 * c.blocked_timeout && out.state != NavState::safe_stop; t += 0.1) {
+    NavInput in = perceive(T, t, 0, false);
+    in.obstacle_distance = 0.3;  // the robot does not move: in.twist is zero
+    out = nav.step(in);
+    if (t < c.blocked_timeout - 0.05) {
+      ASSERT_EQ(out.state, NavState::in_row) << t;
+    }
+  }
+  EXPECT_EQ(out.state, NavState::safe_stop);
+  EXPECT_EQ(out.stop_reason, StopReason::obstacle);
+  EXPECT_NEAR(t, c.blocked_timeout + 0.2, 0.15);
+  // Moving, or with the rectangle clear, the same time passes without a stop.
+  for (const bool moving : {true, false}) {
+    Navigator n2(c, {0}, TurnSide::left);
+    NavOutput o;
+    for (double u = 0.1; u < 2.0 * c.blocked_timeout; u += 0.1) {
+      NavInput in = perceive(T, u, 0, false);
+      in.twist.v = moving ? 0.3 : 0.0;
+      if (moving) in.obstacle_distance = 1.5;  // slowed down, not held
+      o = n2.step(in);
+    }
+    EXPECT_EQ(o.state, NavState::in_row) << moving;
+  }
+}
+
 }  // namespace
 }  // namespace rownav::navigate

@@ -10,6 +10,7 @@
 /// After the end is declared the robot exits by a fixed distance measured by odometry; that
 /// distance is reported here, the navigator drives it.
 #include <Eigen/Core>
+#include <deque>
 #include <optional>
 #include <span>
 
@@ -46,6 +47,14 @@ struct EndOfRowConfig {
   /// corridor band is unseen, not empty (a weed or leaf in the lane ahead; issue 11)
   double max_shadowed = 0.5;
   double shadow_bin_deg = 1.0;  ///< [deg] angular bins of that shadow test (rownav)
+  /// [-] planar scans: a frame whose returns beside the robot (x in [0, box_x_min), inside the
+  /// box's half width) are fewer than this fraction of their median over the last blind_history
+  /// frames is blind (the scanner inside a weed taller than its mount, a dropout): it neither
+  /// confirms nor clears a row end. At a row end the rows beside the robot are still seen; a
+  /// blind scanner sees nothing ahead either (issue 11: "many" weeds in a 2D vineyard ended
+  /// every first row after 5 m) (rownav)
+  double blind_near_ratio = 0.25;
+  int blind_history = 25;  ///< [frames] of that median (1 s of a 25 Hz scanner) (rownav)
   bool use_extent = true;        ///< also end when every followed row's x_max < extent_distance
   double extent_distance = 3.0;  ///< [m] all followed rows ending closer than this: row end ahead
 
@@ -64,6 +73,8 @@ struct EndOfRowConfig {
     v("scan_point_threshold", s.scan_point_threshold);
     v("max_shadowed", s.max_shadowed);
     v("shadow_bin_deg", s.shadow_bin_deg);
+    v("blind_near_ratio", s.blind_near_ratio);
+    v("blind_history", s.blind_history);
     v("use_extent", s.use_extent);
     v("extent_distance", s.extent_distance);
   }
@@ -83,6 +94,9 @@ struct EndOfRowResult {
   bool frame_positive = false;  ///< this frame alone says "row end" (before confirmation)
   /// 001 eq. (24) H1 this frame: |N_k - N_k-1| > count_jump (the end approaches)
   bool count_jump = false;
+  /// planar scan: the sensor saw too little beside the robot to judge (blind_near_ratio); the
+  /// frame neither confirmed nor cleared the end
+  bool blind = false;
 };
 
 /// End-of-row detector. Stateful (confirmation counter); update() never throws.
@@ -92,17 +106,26 @@ class EndOfRowDetector {
   /// One frame: the 3D cloud in the base frame (raw heights; may be empty for a planar scan, in
   /// which case `points_base` 2D points are counted instead), and the tracker's output. Once
   /// declared, the end stays declared until reset() (the navigator resets on the next corridor).
+  /// `sensor_base`: a planar scanner's position in the base frame, from where the shadows of
+  /// the shadow test are cast (a weed touching a scanner at the robot's front hides the whole
+  /// box; seen from the base origin it covers a few degrees).
   EndOfRowResult update(const core::PointCloud& cloud_base,
                         std::span<const Eigen::Vector2f> points_base,
-                        const track::RowTracking& tracking);
+                        const track::RowTracking& tracking,
+                        const Eigen::Vector2f& sensor_base = Eigen::Vector2f::Zero());
   void reset();
   const EndOfRowConfig& config() const { return config_; }
 
  private:
+  /// Planar: whether this frame's returns beside the robot fell below blind_near_ratio of their
+  /// recent median (and keeps that median's history).
+  bool blind(std::span<const Eigen::Vector2f> returns, double hw);
+
   EndOfRowConfig config_;
   int positives_ = 0;
   int previous_count_ = -1;
   bool declared_ = false;
+  std::deque<int> near_counts_;  // planar: returns beside the robot in recent seeing frames
 };
 
 }  // namespace rownav::navigate

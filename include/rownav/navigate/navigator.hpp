@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -117,6 +118,12 @@ struct NavigatorConfig {
   double narrow_margin = 0.05;
   double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
   int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
+  /// [s] in a row, something in the controllers' front rectangle (which slows them down from
+  /// fewer points than the stop box needs) holding the robot below blocked_speed this long ->
+  /// safe stop `obstacle`: a robot that waits for ever for a weed to move is stalled, not safe
+  /// (issue 13; a 2D vineyard run with many weeds sat 1,770 s in front of one) (rownav)
+  double blocked_timeout = 10.0;
+  double blocked_speed = 0.05;  ///< [m/s] below this the robot counts as held (rownav)
   double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
   double entry_max_depth = 6.0;     ///< [m] entering without a corridor seen -> perception_lost
   RowEndEstimatorConfig row_end_estimate;  ///< row ends and spacing of the corridor being left
@@ -139,6 +146,8 @@ struct NavigatorConfig {
     v("narrow_margin", s.narrow_margin);
     v("stop_distance", s.stop_distance);
     v("obstacle_min_points", s.obstacle_min_points);
+    v("blocked_timeout", s.blocked_timeout);
+    v("blocked_speed", s.blocked_speed);
     v("entry_check_depth", s.entry_check_depth);
     v("entry_max_depth", s.entry_max_depth);
     v("row_end_estimate", s.row_end_estimate);
@@ -165,6 +174,9 @@ struct NavInput {
   /// obstacle stop counts these instead of points_base
   std::optional<std::span<const Eigen::Vector2f>> obstacle_points_base;
   RobotLimits robot;
+  /// [m] to the nearest obstacle in the controllers' front rectangle (StackConfig::front,
+  /// control/front_obstacle.hpp); +inf: clear
+  double obstacle_distance = std::numeric_limits<double>::infinity();
 };
 
 /// The navigator's answer.
@@ -229,6 +241,8 @@ class Navigator {
   void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
   /// The stop's message when >= obstacle_min_points points lie in the stop box, else nullopt.
   std::optional<std::string> obstacle_ahead(const NavInput& in) const;
+  /// The stop's message once a front obstacle has held the robot for blocked_timeout.
+  std::optional<std::string> held_by_obstacle(const NavInput& in);
   /// [m] how far past the row end the exit drives (exit_distance, or the canopy's reach).
   double exit_distance(const NavInput& in) const;
   core::Twist2 follow_line(const core::Line2& line, const core::Pose2& T, double v) const;
@@ -249,6 +263,7 @@ class Navigator {
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
   int served_ = 0, turns_ = 0;
   double last_seen_ = -1.0, last_stamp_ = 0.0;
+  std::optional<double> blocked_since_;  // [s] in_row: held by a front obstacle since
   double spacing_ = 0.0;   // [m] spacing of the turn in progress (entry gate, row ends)
   RowEndEstimator ends_;   // the corridor being left
   std::unique_ptr<HeadlandManoeuvre> manoeuvre_;
