@@ -100,8 +100,8 @@ JointConversion JointStateConverter::convert(const sensor_msgs::JointState& msg)
     s.steering_angle = msg.position[i];
   }
   if (positions) {
-    left_.angle = *left;
-    right_.angle = *right;
+    left_angle_ = *left;
+    right_angle_ = *right;
     last_velocity_stamp_.reset();
   } else {
     // Velocity-only drivers: the angle travelled since the last message (rectangle rule at
@@ -113,14 +113,14 @@ JointConversion JointStateConverter::convert(const sensor_msgs::JointState& msg)
         return out;
       }
       if (dt <= config_.max_velocity_gap) {
-        left_.angle += *left * dt;
-        right_.angle += *right * dt;
+        left_angle_ += *left * dt;
+        right_angle_ += *right * dt;
       }
     }
     last_velocity_stamp_ = stamp;
   }
-  s.left_ticks = to_ticks(left_.angle, config_.ticks_per_rev);
-  s.right_ticks = to_ticks(right_.angle, config_.ticks_per_rev);
+  s.left_ticks = to_ticks(left_angle_, config_.ticks_per_rev);
+  s.right_ticks = to_ticks(right_angle_, config_.ticks_per_rev);
   out.sample = s;
   return out;
 }

@@ -131,9 +131,7 @@ std::optional<core::Twist2> RowNavCore::on_odom(const nav_msgs::Odometry& msg) {
     const OdomSample s = to_odom(msg);
     if (!stack_->on_odometry({s.stamp, s.T_odom_base, s.twist}))
       return std::nullopt;  // late or not finite
-    last_odom_stamp_ = s.stamp;
-    if (!started_) return std::nullopt;
-    return mission_.gate(command_at(s.stamp).cmd);
+    return pose_received(s.stamp);
   } catch (const std::exception&) {
     return core::Twist2{};  // a stop, to be safe
   }
@@ -151,19 +149,22 @@ JointAnswer RowNavCore::on_joints(const sensor_msgs::JointState& msg) {
       a.skipped = std::move(c.skipped);
       return a;
     }
-    const std::uint64_t accepted = stack_->stats().encoders;
-    stack_->on_encoders(*c.sample);
-    if (stack_->stats().encoders == accepted) {
+    if (!stack_->on_encoders(*c.sample)) {
       a.skipped = "wheel sample not newer than the last one";
       return a;
     }
-    last_odom_stamp_ = c.sample->stamp;
-    if (started_) a.cmd = mission_.gate(command_at(c.sample->stamp).cmd);
+    a.cmd = pose_received(c.sample->stamp);
   } catch (const std::exception& e) {
     a.cmd = core::Twist2{};  // a stop, to be safe
     a.skipped = e.what();
   }
   return a;
+}
+
+std::optional<core::Twist2> RowNavCore::pose_received(double stamp) {
+  last_odom_stamp_ = stamp;
+  if (!started_) return std::nullopt;
+  return mission_.gate(command_at(stamp).cmd);
 }
 
 std::optional<OdomSample> RowNavCore::own_odometry(double stamp) const {

@@ -20,7 +20,6 @@
 #include "rownav/sim/field_truth.hpp"
 #include "rownav/sim/simulator.hpp"
 #include "rownav_ros/conversions.hpp"
-#include "rownav_ros/joint_state_conversion.hpp"
 #include "rownav_ros/ros_params.hpp"
 
 namespace rownav::ros_bridge {
@@ -109,6 +108,8 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   sim_ = std::make_unique<sim::Simulator>(*field_, robot, sensors, start);
   odometry_.emplace(io::localizer_config_for(robot, sensors.encoders.ticks_per_rev));
   ticks_per_rev_ = sensors.encoders.ticks_per_rev;
+  joints_.left_joints = {c.left_wheel_joint};
+  joints_.right_joints = {c.right_wheel_joint};
   sink_ = std::make_unique<Sink>(*this);
   ros::param::set("/use_sim_time", true);  // the nodes started after this one follow /clock
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -138,10 +139,7 @@ SimNode::~SimNode() {
 }
 
 void SimNode::publish_joints(const core::WheelEncoderSample& s) {
-  WheelJointConfig joints;
-  joints.left_joints = {config_.left_wheel_joint};
-  joints.right_joints = {config_.right_wheel_joint};
-  joints_pub_.publish(to_joint_state_msg(s, ticks_per_rev_, joints));
+  joints_pub_.publish(to_joint_state_msg(s, ticks_per_rev_, joints_));
 }
 
 void SimNode::on_cmd(const geometry_msgs::Twist::ConstPtr& msg) {

@@ -104,10 +104,6 @@ const auto& at(const V& v, std::int64_t i, const CsvReader& r, const fs::path& f
   return v[static_cast<std::size_t>(i)];
 }
 
-}  // namespace
-
-namespace {
-
 /// The samples as they are.
 class StackSink : public InputLogSink {
  public:

@@ -13,6 +13,7 @@ namespace {
 struct BoxCount {
   int left = 0, right = 0;
   double x_last = -1.0;  // [m] farthest counted point with x <= box_x_max (-1: none)
+  int near = 0;          // planar: returns beside the robot, x in [0, box_x_min)
 };
 
 // Half width of the box: the two followed rows when the spacing is known (003 sec. II-C), the
@@ -36,12 +37,14 @@ BoxCount count_cloud(const core::PointCloud& cloud, const EndOfRowConfig& c, dou
   return n;
 }
 
-// Planar scan: every point in the rectangle (003 sec. II-C), counted as "left" for the total.
+// Planar scan: every point in the rectangle (003 sec. II-C), counted as "left" for the total;
+// `near`: the returns beside the robot, before the box (the blindness test).
 BoxCount count_scan(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw) {
   BoxCount n;
   for (const auto& p : pts) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::abs(p.y()) > hw) continue;
     if (p.x() >= 0.0f && p.x() <= c.box_x_max) n.x_last = std::max(n.x_last, double(p.x()));
+    if (p.x() >= 0.0f && p.x() < c.box_x_min) ++n.near;
     if (p.x() >= c.box_x_min && p.x() <= c.box_x_max) ++n.left;
   }
   return n;
@@ -76,16 +79,6 @@ double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig
   int shadowed = 0;
   for (const char h : near_hit) shadowed += h ? 1 : 0;
   return double(shadowed) / n;
-}
-
-// Planar scan: returns beside the robot (x in [0, box_x_min), inside the half width).
-int count_near(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw) {
-  int n = 0;
-  for (const auto& p : pts)
-    if (std::isfinite(p.x()) && std::isfinite(p.y()) && p.x() >= 0.0f && p.x() < c.box_x_min &&
-        std::abs(p.y()) <= hw)
-      ++n;
-  return n;
 }
 
 // The followed rows' extent: the nearest and the farthest x_max of the followed rows, when
@@ -135,8 +128,7 @@ void EndOfRowDetector::reset() {
   near_counts_.clear();
 }
 
-bool EndOfRowDetector::blind(std::span<const Eigen::Vector2f> returns, double hw) {
-  const int near = count_near(returns, config_, hw);
+bool EndOfRowDetector::blind(int near) {
   bool blind = false;
   if (!near_counts_.empty()) {
     std::vector<int> v(near_counts_.begin(), near_counts_.end());
@@ -156,14 +148,14 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   const EndOfRowConfig& c = config_;
   const double hw = half_width(c, tracking);
   const bool planar = cloud_base.empty();
+  const BoxCount n = planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw);
   EndOfRowResult r;
-  if (planar && blind(points_base, hw)) {  // no evidence either way (the count keeps its state)
+  if (planar && blind(n.near)) {  // no evidence either way (the count keeps its state)
     r.blind = true;
     r.end_detected = declared_;
     r.confidence = declared_ ? 1.0 : std::min(1.0, double(positives_) / c.confirm_frames);
     return r;
   }
-  const BoxCount n = planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw);
   r.box_points = n.left + n.right;
   r.left_points = planar ? 0 : n.left;
   r.right_points = planar ? 0 : n.right;

@@ -69,9 +69,10 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
 
 NavStack::~NavStack() = default;
 
-void NavStack::on_encoders(const core::WheelEncoderSample& s) {
-  if (accept(s.stamp, last_encoder_, stats_.encoders, stats_.dropped_encoders))
-    localizer_.add_encoders(s);
+bool NavStack::on_encoders(const core::WheelEncoderSample& s) {
+  if (!accept(s.stamp, last_encoder_, stats_.encoders, stats_.dropped_encoders)) return false;
+  localizer_.add_encoders(s);
+  return true;
 }
 
 void NavStack::on_imu(const core::ImuSample& s) {
@@ -147,7 +148,7 @@ core::RowObservation NavStack::detect_frame(Pending& frame, bool& levelled) {
     const double t0 = cloud.stamp;
     const auto up = localize::gravity_up(imu, t0, t0 + sweep_period_, twist().v);
     const double max_tilt = config_.stack.max_level_tilt_deg * std::numbers::pi / 180.0;
-    if (up && up->allFinite() && up->norm() > 0.0 && up->z() / up->norm() >= std::cos(max_tilt)) {
+    if (up && up->z() >= std::cos(max_tilt)) {  // gravity_up: a unit vector, finite
       levelled = true;
       return pipeline.process(cloud, *up);
     }

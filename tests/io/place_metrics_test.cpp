@@ -57,8 +57,9 @@ TEST(PlaceMetrics, AccuracyIsTheFractionOfRightFramesAndKeysAreMeasuredToCorrido
   EXPECT_FALSE(place_metrics(RunResult{}, truth, block).accuracy.has_value());
 }
 
-TEST(PlaceMetrics, OneCorridorInClosedLoopWithTruthLabels) {
-  const sim::Field field = build_field(small_vineyard(), ".");
+/// Corridor 0 of the small vineyard, the map stage on, a raw-corridor tracker and a
+/// proportional controller.
+ClosedLoopSetup one_corridor_with_place(const sim::Field& field) {
   ClosedLoopSetup s;
   s.field = &field;
   s.mission.corridors = {0};
@@ -67,6 +68,12 @@ TEST(PlaceMetrics, OneCorridorInClosedLoopWithTruthLabels) {
   s.make_controller = [] { return std::make_unique<test::ProportionalController>(); };
   s.time_limit = 100.0;
   s.nav.place.enabled = true;
+  return s;
+}
+
+TEST(PlaceMetrics, OneCorridorInClosedLoopWithTruthLabels) {
+  const sim::Field field = build_field(small_vineyard(), ".");
+  ClosedLoopSetup s = one_corridor_with_place(field);
   const RunResult r = run_closed_loop(s);
   const RunSummary sum = summarize(r, sim::FieldTruth(field));
   EXPECT_EQ(sum.corridors_served, 1);
@@ -86,14 +93,7 @@ TEST(PlaceMetrics, OneCorridorInClosedLoopWithCameraLabels) {
   // `rownav run --labels camera` does. Measured: accuracy 0.966, the two keys, key error max
   // 0.35 m; the truth labels' bounds hold.
   const sim::Field field = build_field(small_vineyard(), ".");
-  ClosedLoopSetup s;
-  s.field = &field;
-  s.mission.corridors = {0};
-  s.detect_config = std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml";
-  s.make_tracker = [] { return std::make_unique<track::RawCorridorTracker>(); };
-  s.make_controller = [] { return std::make_unique<test::ProportionalController>(); };
-  s.time_limit = 100.0;
-  s.nav.place.enabled = true;
+  ClosedLoopSetup s = one_corridor_with_place(field);
   s.camera_labels = true;
   s.camera.canopy_colour = s.camera.crop_colour;
   const RunResult r = run_closed_loop(s);

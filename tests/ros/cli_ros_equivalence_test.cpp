@@ -39,44 +39,41 @@ double ros_stamp(double t) {
 }
 
 /// The command line's stack, its inputs rounded as a ROS message carries them (stamps in whole
-/// nanoseconds, LaserScan angles in float32), or as recorded.
+/// nanoseconds, LaserScan angles in float32); as recorded, the stack itself is the sink.
 class CliSink : public io::InputLogSink {
  public:
-  CliSink(navigate::NavStack& stack, bool ns) : stack_(stack), ns_(ns) {}
+  explicit CliSink(navigate::NavStack& stack) : stack_(stack) {}
   void on_encoders(const core::WheelEncoderSample& s) override {
     auto c = s;
-    c.stamp = t(s.stamp);
+    c.stamp = ros_stamp(s.stamp);
     stack_.on_encoders(c);
   }
   void on_imu(const core::ImuSample& s) override {
     auto c = s;
-    c.stamp = t(s.stamp);
+    c.stamp = ros_stamp(s.stamp);
     stack_.on_imu(c);
   }
   void on_gnss(const core::GnssFix& s) override {
     auto c = s;
-    c.stamp = t(s.stamp);
+    c.stamp = ros_stamp(s.stamp);
     stack_.on_gnss(c);
   }
   void on_cloud(core::PointCloud cloud) override {
-    cloud.stamp = t(cloud.stamp);
+    cloud.stamp = ros_stamp(cloud.stamp);
     stack_.on_cloud(std::move(cloud));
   }
   void on_scan(core::Scan2D scan) override {
-    scan.stamp = t(scan.stamp);
-    if (ns_) {  // sensor_msgs/LaserScan's angles and limits are float32
-      for (double* f : {&scan.angle_min, &scan.angle_increment, &scan.time_increment,
-                        &scan.range_min, &scan.range_max})
-        *f = static_cast<float>(*f);
-    }
+    scan.stamp = ros_stamp(scan.stamp);
+    // sensor_msgs/LaserScan's angles and limits are float32
+    for (double* f : {&scan.angle_min, &scan.angle_increment, &scan.time_increment,
+                      &scan.range_min, &scan.range_max})
+      *f = static_cast<float>(*f);
     stack_.on_scan(std::move(scan));
   }
-  navigate::NavCommand command(double stamp) override { return stack_.command(t(stamp)); }
+  navigate::NavCommand command(double stamp) override { return stack_.command(ros_stamp(stamp)); }
 
  private:
-  double t(double s) const { return ns_ ? ros_stamp(s) : s; }
   navigate::NavStack& stack_;
-  bool ns_;
 };
 
 /// rownav_node's stack, every sample through its ROS message and the node's conversion.
@@ -189,7 +186,7 @@ void expect_equivalent(const std::string& sensor, const std::string& input,
   const int ticks = run.setup.sensors.encoders.ticks_per_rev;
 
   const auto cli_stack = io::make_nav_stack(run.setup, run.result.order);
-  CliSink cli_ns(*cli_stack, true);
+  CliSink cli_ns(*cli_stack);
   const auto cli = io::replay_input_log(run.rec, cli_ns);
   const auto node_stack = rb::make_node_stack(ns, mount);
   RosSink ros(*node_stack, ns.node.wheels, ticks);
@@ -207,8 +204,7 @@ void expect_equivalent(const std::string& sensor, const std::string& input,
   // within 0.0043 rad/s (3D: stamps moved by < 1 ns; which decision they tip is not traced)
   // and 0.0175 rad/s (2D: float32 beam angles and the stamps). Bound: 0.05 rad/s.
   const auto raw_stack = io::make_nav_stack(run.setup, run.result.order);
-  CliSink cli_raw(*raw_stack, false);
-  const Compared raw = compare(io::replay_input_log(run.rec, cli_raw), node);
+  const Compared raw = compare(io::replay_input_log(run.rec, *raw_stack), node);
   EXPECT_EQ(raw.state_differing, 0u);
   EXPECT_LT(raw.max_dv, 1e-6);
   EXPECT_LT(raw.max_domega, 0.05);

@@ -117,9 +117,9 @@ class EndOfRowDetector {
   const EndOfRowConfig& config() const { return config_; }
 
  private:
-  /// Planar: whether this frame's returns beside the robot fell below blind_near_ratio of their
-  /// recent median (and keeps that median's history).
-  bool blind(std::span<const Eigen::Vector2f> returns, double hw);
+  /// Planar: whether this frame's `near` returns beside the robot fell below blind_near_ratio of
+  /// their recent median (and keeps that median's history).
+  bool blind(int near);
 
   EndOfRowConfig config_;
   int positives_ = 0;

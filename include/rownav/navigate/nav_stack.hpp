@@ -101,7 +101,8 @@ class NavStack {
   NavStack(const NavStack&) = delete;
   NavStack& operator=(const NavStack&) = delete;
 
-  void on_encoders(const core::WheelEncoderSample& s);
+  /// Wheel counts; false when dropped (stamp not newer than the newest one, or not finite).
+  bool on_encoders(const core::WheelEncoderSample& s);
   void on_imu(const core::ImuSample& s);
   void on_gnss(const core::GnssFix& s);
   /// A pose of an external odometry (StackConfig::odometry = external); false when it was

@@ -70,15 +70,13 @@ class JointStateConverter {
   JointConversion convert(const sensor_msgs::JointState& msg);
 
  private:
-  struct Side {
-    double angle = 0.0;  // [rad] mean joint angle (integrated for velocity-only drivers)
-  };
   std::optional<double> mean_of(const sensor_msgs::JointState& msg,
                                 const std::vector<std::string>& joints, bool positions,
                                 std::string& why) const;
 
   WheelJointConfig config_;
-  Side left_, right_;
+  // [rad] mean joint angle of each side (integrated for velocity-only drivers)
+  double left_angle_ = 0.0, right_angle_ = 0.0;
   std::optional<double> last_velocity_stamp_;  // [s] of the last velocity-only message
 };
 

@@ -115,6 +115,9 @@ class RowNavCore {
 
  private:
   FrameResult frame(double stamp);
+  /// A pose sample (odometry or wheel counts) accepted at `stamp`: the command between frames
+  /// once frames are processed, else nothing.
+  std::optional<core::Twist2> pose_received(double stamp);
   FrameResult fail(double stamp, std::string why);
   FrameResult held(double stamp) const;
   /// NavStack::command at `stamp`, or at the newest instant already commanded when that is

@@ -27,6 +27,7 @@
 #include "rownav/core/twist.hpp"
 #include "rownav/localize/localizer.hpp"
 #include "rownav/sim/ground_truth.hpp"
+#include "rownav_ros/joint_state_conversion.hpp"
 
 namespace rownav::sim {
 class Simulator;
@@ -153,6 +154,7 @@ class SimNode {
   std::optional<localize::Localizer> odometry_;
   ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_, joints_pub_;
   int ticks_per_rev_ = 1;  ///< the simulated encoders' resolution (counts -> joint angle)
+  WheelJointConfig joints_;  ///< the wheel joints of `joint_states` (from the parameters)
   ros::Subscriber cmd_sub_, state_sub_, tracking_sub_;
   /// cmd_vel and the tracking output are taken on their own thread, when they arrive
   ros::CallbackQueue answers_;
