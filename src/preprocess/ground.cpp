@@ -104,6 +104,16 @@ void GroundEstimator::set_flat() {
 }
 
 bool GroundEstimator::estimate(std::span<const core::PointXYZIRT> points) {
+  return estimate_any(points);
+}
+
+bool GroundEstimator::estimate(std::span<const CroppedPoint> points) {
+  return estimate_any(points);
+}
+
+// Templated on the point type (PointXYZIRT, CroppedPoint): only x, y, z are read.
+template <class P>
+bool GroundEstimator::estimate_any(std::span<const P> points) {
   set_flat();
   rng_.seed(config_.seed);
   if (config_.method == GroundMethod::none) return true;
@@ -122,7 +132,8 @@ bool GroundEstimator::estimate(std::span<const core::PointXYZIRT> points) {
   return true;
 }
 
-void GroundEstimator::setup_grid(std::span<const core::PointXYZIRT> points, std::size_t step) {
+template <class P>
+void GroundEstimator::setup_grid(std::span<const P> points, std::size_t step) {
   float x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
   for (std::size_t i = 0; i < points.size(); i += step) {
     const auto& p = points[i];
@@ -139,7 +150,8 @@ void GroundEstimator::setup_grid(std::span<const core::PointXYZIRT> points, std:
   gx0_ = x0, gy0_ = y0, inv_cell_ = 1.0f / cell_;
 }
 
-bool GroundEstimator::estimate_cells(std::span<const core::PointXYZIRT> points) {
+template <class P>
+bool GroundEstimator::estimate_cells(std::span<const P> points) {
   if (points.size() < static_cast<std::size_t>(config_.min_cell_points)) return false;
   const std::size_t step = stride(points.size()), m = (points.size() + step - 1) / step;
   setup_grid(points, step);

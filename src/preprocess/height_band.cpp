@@ -21,4 +21,18 @@ void height_band(std::span<const core::PointXYZIRT> in, const GroundEstimator& g
   }
 }
 
+std::size_t height_band(std::span<const CroppedPoint> in, const GroundEstimator& ground,
+                        const HeightBandConfig& config, std::vector<CroppedPoint>& out) {
+  if (out.size() < in.size()) out.resize(in.size());
+  const auto lo = static_cast<float>(config.min_height);
+  const auto hi = static_cast<float>(config.max_height);
+  std::size_t kept = 0;
+  for (const auto& p : in) {
+    const float h = p.z - ground.ground_z(p.x, p.y);  // ground.height() of the cloud point
+    out[kept] = p;
+    kept += (h >= lo) & (h <= hi);
+  }
+  return kept;
+}
+
 }  // namespace rownav::preprocess

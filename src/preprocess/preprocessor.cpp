@@ -30,20 +30,21 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
   out_.cloud.has_intensity = cloud_base.has_intensity;
   out_.cloud.has_ring = cloud_base.has_ring;
   out_.cloud.has_time = cloud_base.has_time;
-  crop_3d(cloud_base.points);
-  out_.ground_ok = ground_.estimate(cropped_);
-  // Height band fused into the voxel pass (no copy of the band).
-  const auto lo = static_cast<float>(config_.height.min_height);
-  const auto hi = static_cast<float>(config_.height.max_height);
-  voxel_.filter_if(cropped_, out_.cloud.points, [&](const core::PointXYZIRT& p) {
-    const float h = ground_.height(p);
-    return (h >= lo) & (h <= hi);
-  });
+  const std::span<const core::PointXYZIRT> in(cloud_base.points);
+  const std::size_t kept = crop_.crop(in, crop_pts_, out_.dropped_invalid);
+  const std::span<const CroppedPoint> cropped(crop_pts_.data(), kept);
+  out_.ground_ok = ground_.estimate(cropped);
+  // The band and the voxel grid read the compact cropped points; the voxel grid reads the other
+  // fields of the band's points from the cloud.
+  const std::size_t band = height_band(cropped, ground_, config_.height, band_);
+  voxel_.filter_indexed(in, std::span<const CroppedPoint>(band_.data(), band), out_.cloud.points);
   out_.points.clear();
   out_.heights.clear();
   if (config_.use_scan) {
     out_.scan.stamp = cloud_base.stamp;
-    scan_.project(cropped_, &ground_, out_.scan);
+    crop_buf_.clear();  // the virtual scan reads whole points
+    for (const auto& c : cropped) crop_buf_.push_back(in[c.index]);
+    scan_.project(crop_buf_, &ground_, out_.scan);
     ScanProjection::to_points(out_.scan, tmp2_);
     voxel_.filter(tmp2_, out_.points);
     filter_points_2d();
@@ -62,22 +63,6 @@ const Preprocessed& Preprocessor::run(const core::PointCloud& cloud_base) {
     out_.heights.push_back(ground_.height(p));  // trunk bands on sloped / rough ground
   }
   return out_;
-}
-
-void Preprocessor::crop_3d(std::span<const core::PointXYZIRT> in) {
-  // Into a buffer that only grows (no per-frame initialisation). Branches, not a branch-free
-  // compaction: a column's returns share the outcome, and writing every point costs more.
-  if (crop_buf_.size() < in.size()) crop_buf_.resize(in.size());
-  std::size_t kept = 0, invalid = 0;
-  for (const auto& p : in) {
-    if (!p.finite()) {
-      ++invalid;
-      continue;
-    }
-    if (crop_.contains(p.x, p.y, p.z)) crop_buf_[kept++] = p;
-  }
-  cropped_ = std::span<const core::PointXYZIRT>(crop_buf_.data(), kept);
-  out_.dropped_invalid = invalid;
 }
 
 void Preprocessor::filter_points_2d() {

@@ -25,6 +25,19 @@ void VoxelGrid::finish(std::span<const core::PointXYZIRT> in,
   }
 }
 
+void VoxelGrid::filter_indexed(std::span<const core::PointXYZIRT> cloud,
+                               std::span<const CroppedPoint> pts,
+                               std::vector<core::PointXYZIRT>& out) {
+  out.clear();
+  if (inv_ == 0.0f) {
+    for (const auto& c : pts) out.push_back(cloud[c.index]);
+    return;
+  }
+  start(pts.size());
+  for (const auto& c : pts) add(c.x, c.y, c.z, cloud[c.index], c.index);
+  finish(cloud, out);
+}
+
 void VoxelGrid::filter(std::span<const Eigen::Vector2f> in, std::vector<Eigen::Vector2f>& out) {
   out.clear();
   if (inv_ == 0.0f) {

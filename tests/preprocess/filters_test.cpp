@@ -44,6 +44,46 @@ TEST(CropBox, BoundariesAndRange) {
   EXPECT_THROW(rp::CropBox{c}, std::invalid_argument);
 }
 
+// CropBox::crop keeps exactly the finite points contains() accepts, in order, with their index,
+// and counts NaN / Inf: with the range test (an annulus cutting the box) and without it (the
+// default box lies inside range_max, so the test is skipped).
+TEST(CropBox, CropEqualsContainsWithAndWithoutRangeTest) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> u(-12.0f, 12.0f);
+  std::vector<PointXYZIRT> in;
+  for (int i = 0; i < 20000; ++i) in.push_back(pt(u(rng), u(rng), u(rng) * 0.5f));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  in.push_back(pt(nan, 0.0f, 0.0f));
+  in.push_back(pt(1.0f, nan, 0.0f));
+  in.push_back(pt(1.0f, 0.0f, nan));
+  in.push_back(pt(inf, 0.0f, 0.0f));
+  in.push_back(pt(1.0f, -inf, 0.0f));
+  in.push_back(pt(1.0f, 0.0f, inf));
+  in.push_back(pt(10.0f, 4.0f, 0.0f));  // on the corner: inclusive
+  rp::CropBoxConfig ring;
+  ring.range_min = 0.5, ring.range_max = 8.0, ring.sensor_xy = {0.3, -0.2};
+  for (const auto& c : {rp::CropBoxConfig{}, ring}) {
+    const rp::CropBox box(c);
+    std::vector<rp::CroppedPoint> out(3);  // only grown
+    std::size_t invalid = 99;
+    const std::size_t kept = box.crop(in, out, invalid);
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      if (!in[i].finite() || !box.contains(in[i].x, in[i].y, in[i].z)) continue;
+      ASSERT_LT(n, kept);
+      EXPECT_EQ(out[n].index, i);
+      EXPECT_EQ(out[n].x, in[i].x);
+      EXPECT_EQ(out[n].y, in[i].y);
+      EXPECT_EQ(out[n].z, in[i].z);
+      ++n;
+    }
+    EXPECT_EQ(kept, n);
+    EXPECT_GT(kept, 1000u);
+    EXPECT_EQ(invalid, 6u);
+  }
+}
+
 TEST(VoxelGrid, CentroidsAndCountsOnLattice) {
   // Lattice of spacing 0.05 over [0, 0.6)^2 x [0, 0.3): 12 x 12 x 6 points; 0.15 m voxels hold
   // 3 x 3 x 3 points each -> 4 x 4 x 2 voxels, centroids at the middle lattice point.

@@ -3,9 +3,12 @@
 /// sensor origin (Nehme 2021 sec. 4 crops y to [-4, 4] m; Bertoglio 2023 sec. II-A keeps a circle
 /// around the sensor).
 #include <Eigen/Core>
+#include <span>
+#include <vector>
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
+#include "rownav/preprocess/cropped_point.hpp"
 
 namespace rownav::preprocess {
 
@@ -58,11 +61,24 @@ class CropBox {
     return (z >= z_min_) & (z <= z_max_) & (x >= x_min_) & (x <= x_max_) & (y >= y_min_) &
            (y <= y_max_) & (r2 >= r2_min_) & (r2 <= r2_max_);
   }
+  /// The points of `in` for which contains(x, y, z) holds, in order, into out[0, returned
+  /// count) (`out` is only grown, never shrunk or initialised); `invalid` receives the number of
+  /// NaN / Inf points. One pass; the range test is skipped when the box lies inside the annulus.
+  std::size_t crop(std::span<const core::PointXYZIRT> in, std::vector<CroppedPoint>& out,
+                   std::size_t& invalid) const;
   const CropBoxConfig& config() const { return config_; }
 
  private:
+  /// contains(x, y, z), false for NaN / Inf, without the range test when it cannot fail.
+  bool keeps(float x, float y, float z) const {
+    const bool in_box =
+        z >= z_min_ && z <= z_max_ && x >= x_min_ && x <= x_max_ && y >= y_min_ && y <= y_max_;
+    return in_box && (!ring_test_ || contains(x, y));
+  }
+
   CropBoxConfig config_;
   float x_min_, x_max_, y_min_, y_max_, z_min_, z_max_, sx_, sy_, r2_min_, r2_max_;
+  bool ring_test_ = true;  // false: every point of the box lies in the range annulus
 };
 
 }  // namespace rownav::preprocess

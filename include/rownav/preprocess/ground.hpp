@@ -15,6 +15,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
+#include "rownav/preprocess/cropped_point.hpp"
 
 namespace rownav::preprocess {
 
@@ -76,6 +77,8 @@ class GroundEstimator {
   /// Estimates the ground from a cloud (base frame, finite points). False when the method
   /// failed (too few points / no acceptable plane): the ground is then flat at flat_z.
   bool estimate(std::span<const core::PointXYZIRT> points);
+  /// The same estimate from cropped points (the same coordinates give the same ground).
+  bool estimate(std::span<const CroppedPoint> points);
   /// [m] ground z at (x, y), base frame.
   float ground_z(float x, float y) const {
     return method_ == GroundMethod::lowest_cell ? grid_z(x, y) : plane_z(x, y);
@@ -94,8 +97,12 @@ class GroundEstimator {
     const int iy = std::clamp(static_cast<int>((y - gy0_) * inv_cell_), 0, ny_ - 1);
     return plane_z(x, y) + filled_[static_cast<std::size_t>(iy * nx_ + ix)];
   }
-  bool estimate_cells(std::span<const core::PointXYZIRT> points);
-  void setup_grid(std::span<const core::PointXYZIRT> points, std::size_t step);
+  template <class P>
+  bool estimate_any(std::span<const P> points);
+  template <class P>
+  bool estimate_cells(std::span<const P> points);
+  template <class P>
+  void setup_grid(std::span<const P> points, std::size_t step);
   void fill_holes();
   void set_flat();
   std::size_t stride(std::size_t n) const {

@@ -7,6 +7,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
+#include "rownav/preprocess/cropped_point.hpp"
 #include "rownav/preprocess/ground.hpp"
 
 namespace rownav::preprocess {
@@ -27,5 +28,11 @@ struct HeightBandConfig {
 /// Appends to `out` (cleared first) the points with min_height <= ground.height(p) <= max_height.
 void height_band(std::span<const core::PointXYZIRT> in, const GroundEstimator& ground,
                  const HeightBandConfig& config, std::vector<core::PointXYZIRT>& out);
+
+/// The same band on cropped points, into out[0, returned count) in order (`out` is only grown,
+/// never shrunk or initialised): a branch-free compaction, since whether a return is in the band
+/// changes from one return to the next along a column.
+std::size_t height_band(std::span<const CroppedPoint> in, const GroundEstimator& ground,
+                        const HeightBandConfig& config, std::vector<CroppedPoint>& out);
 
 }  // namespace rownav::preprocess

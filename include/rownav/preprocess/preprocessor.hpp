@@ -4,7 +4,8 @@
 /// removal and, for 3D clouds, the 2D points (projection or virtual scan).
 ///
 /// 3D frame: drop NaN / Inf -> crop box + range -> ground estimate -> height band -> voxel grid
-/// (Nehme 2021 sec. 4) -> cloud, the band and the voxel grid in one pass. Then either points =
+/// (Nehme 2021 sec. 4) -> cloud. The crop keeps compact (x, y, z, index) points that the ground,
+/// the band and the voxel grid read; the cloud is not copied. Then either points =
 /// (x, y) of the cloud, each point filtered by the enabled outlier filters in 3D; or (use_scan) a
 /// virtual scan of the cropped cloud (Bertoglio 2023 sec. II-A), whose returns go through a 2D
 /// voxel grid and the outlier filters.
@@ -78,7 +79,6 @@ class Preprocessor {
   const GroundEstimator& ground() const { return ground_; }
 
  private:
-  void crop_3d(std::span<const core::PointXYZIRT> in);  // drop NaN / Inf + crop -> cropped_
   void filter_points_2d();
 
   PreprocessConfig config_;
@@ -90,8 +90,8 @@ class Preprocessor {
   ScanProjection scan_;
   Preprocessed out_;
   bool last_was_3d_ = false;
-  std::vector<core::PointXYZIRT> crop_buf_, tmp3_;  // crop_buf_ only grows
-  std::span<const core::PointXYZIRT> cropped_;        // the cropped points, in crop_buf_
+  std::vector<CroppedPoint> crop_pts_, band_;       // only grow: the crop's output, the band
+  std::vector<core::PointXYZIRT> crop_buf_, tmp3_;  // crop_buf_: cropped points for use_scan
   std::vector<Eigen::Vector2f> tmp2_;
 };
 

@@ -11,6 +11,7 @@
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
 #include "rownav/preprocess/cell_hash.hpp"
+#include "rownav/preprocess/cropped_point.hpp"
 
 namespace rownav::preprocess {
 
@@ -37,19 +38,44 @@ class VoxelGrid {
   void filter(std::span<const core::PointXYZIRT> in, std::vector<core::PointXYZIRT>& out) {
     filter_if(in, out, [](const core::PointXYZIRT&) { return true; });
   }
-  /// As filter() on the points of `in` for which keep(p) holds, in one pass (the preprocessor
-  /// fuses its height band into the voxel pass this way). Same output as filtering a copy.
+  /// As filter() on the points of `in` for which keep(p) holds, in one pass. Same output as
+  /// filtering a copy.
   /// Every point is looked up in the hash: a "same voxel as the previous point" shortcut costs
   /// more in mispredicted branches than it saves (bench/preprocess_bench.cpp, BM_ChainStep/3).
   template <class Keep>
   void filter_if(std::span<const core::PointXYZIRT> in, std::vector<core::PointXYZIRT>& out,
                  Keep&& keep);
+  /// As filter() on the cloud points pts[j].index, in the order of `pts`, with the coordinates
+  /// of `pts` (the preprocessor's cropped points): the other fields are read from `cloud` only for
+  /// these points. Same output as filter() on the gathered points. `out` must not alias `cloud`.
+  void filter_indexed(std::span<const core::PointXYZIRT> cloud, std::span<const CroppedPoint> pts,
+                      std::vector<core::PointXYZIRT>& out);
   /// 2D (pixels of voxel_size): centroid of each occupied pixel.
   void filter(std::span<const Eigen::Vector2f> in, std::vector<Eigen::Vector2f>& out);
   const VoxelGridConfig& config() const { return config_; }
 
  private:
   void finish(std::span<const core::PointXYZIRT> in, std::vector<core::PointXYZIRT>& out) const;
+  void start(std::size_t n) {
+    // Size the table for last frame's voxel count (it grows if needed): it stays in cache.
+    hash_.reset(std::min(n, acc_.size() + acc_.size() / 2 + 64));
+    acc_.clear();
+  }
+  /// Adds point `first` (index in the cloud) at (x, y, z) to its voxel's sums.
+  void add(float x, float y, float z, const core::PointXYZIRT& p, std::uint32_t first) {
+    int ix = 0, iy = 0, iz = 0;
+    if (!cell_index(x * inv_, ix) || !cell_index(y * inv_, iy) || !cell_index(z * inv_, iz)) return;
+    bool fresh = false;
+    const std::uint32_t a =
+        hash_.find_or_insert(cell_key(ix, iy, iz), static_cast<std::uint32_t>(acc_.size()), fresh);
+    if (fresh) {
+      acc_.push_back({x, y, z, p.intensity, p.time, 1u, first});
+      return;
+    }
+    Acc& v = acc_[a];
+    v.x += x, v.y += y, v.z += z, v.intensity += p.intensity, v.time += p.time;
+    ++v.count;
+  }
   struct Acc {  // float sums: < 1e-4 m error for the few hundred points of a voxel
     float x, y, z, intensity, time;
     std::uint32_t count, first;
@@ -69,25 +95,10 @@ void VoxelGrid::filter_if(std::span<const core::PointXYZIRT> in,
       if (keep(p)) out.push_back(p);
     return;
   }
-  // Size the table for last frame's voxel count (it grows if needed) so that it stays in cache.
-  hash_.reset(std::min(in.size(), acc_.size() + acc_.size() / 2 + 64));
-  acc_.clear();
+  start(in.size());
   for (std::uint32_t i = 0; i < in.size(); ++i) {
     const auto& p = in[i];
-    int ix = 0, iy = 0, iz = 0;
-    if (!keep(p) || !cell_index(p.x * inv_, ix) || !cell_index(p.y * inv_, iy) ||
-        !cell_index(p.z * inv_, iz))
-      continue;
-    bool fresh = false;
-    const std::uint32_t a = hash_.find_or_insert(cell_key(ix, iy, iz),
-                                                 static_cast<std::uint32_t>(acc_.size()), fresh);
-    if (fresh) {
-      acc_.push_back({p.x, p.y, p.z, p.intensity, p.time, 1u, i});
-      continue;
-    }
-    Acc& v = acc_[a];
-    v.x += p.x, v.y += p.y, v.z += p.z, v.intensity += p.intensity, v.time += p.time;
-    ++v.count;
+    if (keep(p)) add(p.x, p.y, p.z, p, i);
   }
   finish(in, out);
 }
