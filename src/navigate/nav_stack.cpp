@@ -144,9 +144,9 @@ core::RowObservation NavStack::detect_frame(Pending& frame, bool& levelled) {
   if (auto* scan = std::get_if<core::Scan2D>(&frame.data)) return pipeline.process(*scan);
   const auto& cloud = std::get<core::PointCloud>(frame.data);
   if (config_.stack.level_by_gravity) {
-    const std::vector<core::ImuSample> imu(imu_.begin(), imu_.end());
+    imu_buf_.assign(imu_.begin(), imu_.end());  // contiguous, no per-frame allocation
     const double t0 = cloud.stamp;
-    const auto up = localize::gravity_up(imu, t0, t0 + sweep_period_, twist().v);
+    const auto up = localize::gravity_up(imu_buf_, t0, t0 + sweep_period_, twist().v);
     const double max_tilt = config_.stack.max_level_tilt_deg * std::numbers::pi / 180.0;
     if (up && up->z() >= std::cos(max_tilt)) {  // gravity_up: a unit vector, finite
       levelled = true;

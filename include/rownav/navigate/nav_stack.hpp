@@ -158,6 +158,7 @@ class NavStack {
   PlaceInput place_input_;  // after the members built before validation (config_.validate())
   GroundCoverEstimator cover_;  // validated config
   std::deque<core::ImuSample> imu_;
+  std::vector<core::ImuSample> imu_buf_;  // imu_ made contiguous for levelling, reused per frame
   std::unique_ptr<Pending> pending_;
   std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;  // last_cloud_stamp_: any frame
   double sweep_period_ = 0.0;
