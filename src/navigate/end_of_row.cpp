@@ -50,35 +50,125 @@ BoxCount count_scan(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& 
   return n;
 }
 
-// Planar scan: share of the box's view that nearer returns in the corridor shadow. The beams of
-// one plane stop at the first thing they meet: a weed or a leaf in the lane ahead hides the box
-// as completely as the headland's open ground empties it, and only the second is a row end
-// (issue 11: "many" weeds in a 0.8 m vegetable bed ended the row 3.5 m early). Bins of
-// shadow_bin_deg over the box's angular span seen from the scanner (a weed touching it hides
-// the whole box); a bin is shadowed when its nearest return lies before the box (x < box_x_min)
-// inside the band.
-double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c, double hw,
-                      const Eigen::Vector2f& sensor) {
-  const double dx = c.box_x_min - double(sensor.x());
-  if (!(dx > 0.0)) return 0.0;  // the scanner at or beyond the box: nothing can hide it
-  const double lo = std::atan2(-hw - double(sensor.y()), dx);
-  const double hi = std::atan2(hw - double(sensor.y()), dx);
-  const double bin = c.shadow_bin_deg * std::numbers::pi / 180.0;
-  const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) / bin)));
-  std::vector<double> nearest(static_cast<std::size_t>(n), 1e300);
-  std::vector<char> near_hit(static_cast<std::size_t>(n), 0);
+// The lane at the box's near edge: between the followed rows' inner faces (a row's own
+// returns before the box are the row, not an occluder), else the box's half width.
+struct Lane {
+  double right, left;  // [m] y bounds at x = box_x_min (base frame)
+};
+Lane lane_at_box(const track::RowTracking& t, const EndOfRowConfig& c, double hw) {
+  const int n = static_cast<int>(t.rows.size());
+  if (t.left < 0 || t.right < 0 || t.left >= n || t.right >= n) return {-hw, hw};
+  const auto face = [&](int i, double side) {
+    const track::TrackedRow& r = t.rows[static_cast<std::size_t>(i)];
+    const double at = c.box_x_min * std::tan(r.heading);
+    if (std::isfinite(r.centre_offset) && r.half_width > 0.0)
+      return r.centre_offset + at + side * r.half_width;
+    return r.offset + at;  // a fitted face (planar scan): already the edge
+  };
+  const Lane lane{face(t.right, 1.0), face(t.left, -1.0)};
+  if (!std::isfinite(lane.right) || !std::isfinite(lane.left) || lane.left <= lane.right)
+    return {-hw, hw};
+  return lane;
+}
+
+// One planar return seen from the scanner: bearing, range, and whether it lies in the lane
+// before the box.
+struct Return {
+  double bearing, range;
+  bool near;
+  Eigen::Vector2f p;
+};
+
+// Angular bins over the lane's view of the box, each holding its nearest return.
+class ShadowBins {
+ public:
+  ShadowBins(double lo, double hi, double bin)
+      : lo_(lo),
+        bin_(bin),
+        n_(std::max(1, static_cast<int>(std::ceil((hi - lo) / bin)))),
+        hi_(hi),
+        nearest_(static_cast<std::size_t>(n_), 1e300),
+        near_(static_cast<std::size_t>(n_), 0) {}
+  /// Bearings [a0, a1] hidden at range r by a return (near: in the lane before the box).
+  void mark(double a0, double a1, double r, bool near) {
+    if (a1 <= lo_ || a0 >= hi_) return;
+    const int k0 = std::clamp(int(std::floor((a0 - lo_) / bin_)), 0, n_ - 1);
+    const int k1 = std::clamp(int(std::floor((a1 - lo_) / bin_)), 0, n_ - 1);
+    for (auto k = static_cast<std::size_t>(k0); k <= static_cast<std::size_t>(k1); ++k)
+      if (r < nearest_[k]) nearest_[k] = r, near_[k] = near;
+  }
+  double share() const {
+    int shadowed = 0;
+    for (const char h : near_) shadowed += h ? 1 : 0;
+    return double(shadowed) / n_;
+  }
+
+ private:
+  double lo_, bin_;
+  int n_;
+  double hi_;
+  std::vector<double> nearest_;
+  std::vector<char> near_;
+};
+
+// The planar returns ahead of the scanner, sorted by bearing.
+std::vector<Return> returns_by_bearing(std::span<const Eigen::Vector2f> pts,
+                                       const EndOfRowConfig& c, const Lane& lane,
+                                       const Eigen::Vector2f& sensor) {
+  std::vector<Return> rs;
   for (const auto& p : pts) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || p.x() <= sensor.x()) continue;
     const Eigen::Vector2f q = p - sensor;
-    const double a = std::atan2(double(q.y()), double(q.x()));
-    if (a <= lo || a >= hi) continue;
-    const auto k = static_cast<std::size_t>(std::clamp(int((a - lo) / bin), 0, n - 1));
-    const double r = std::hypot(double(q.x()), double(q.y()));
-    if (r < nearest[k]) nearest[k] = r, near_hit[k] = p.x() < c.box_x_min && std::abs(p.y()) <= hw;
+    const bool near = p.x() < c.box_x_min && p.y() >= lane.right && p.y() <= lane.left;
+    rs.push_back({std::atan2(double(q.y()), double(q.x())), double(q.norm()), near, p});
   }
-  int shadowed = 0;
-  for (const char h : near_hit) shadowed += h ? 1 : 0;
-  return double(shadowed) / n;
+  std::sort(rs.begin(), rs.end(),
+            [](const Return& a, const Return& b) { return a.bearing < b.bearing; });
+  return rs;
+}
+
+// Chains of near returns next to each other in bearing and closer than shadow_link (voxel
+// centroids of one surface) that cross shadow_wall of the lane's width: a wall, closed between
+// its returns. A clump of weeds narrower than that keeps the gaps between its returns.
+void close_walls(std::vector<Return> near, const EndOfRowConfig& c, const Lane& lane,
+                 ShadowBins& bins) {
+  std::erase_if(near, [](const Return& r) { return !r.near; });
+  const double wall = c.shadow_wall * (lane.left - lane.right);
+  for (std::size_t i = 0; i < near.size();) {
+    std::size_t j = i;
+    float y_min = near[i].p.y(), y_max = near[i].p.y();
+    while (j + 1 < near.size() && (near[j].p - near[j + 1].p).norm() <= c.shadow_link) {
+      ++j;
+      y_min = std::min(y_min, near[j].p.y());
+      y_max = std::max(y_max, near[j].p.y());
+    }
+    if (j > i && double(y_max - y_min) >= wall)
+      for (std::size_t k = i; k < j; ++k)
+        bins.mark(near[k].bearing, near[k + 1].bearing, std::min(near[k].range, near[k + 1].range),
+                  true);
+    i = j + 1;
+  }
+}
+
+// Planar scan: share of the lane's view of the box that nearer returns in the lane shadow. The
+// beams of one plane stop at the first thing they meet: a weed or a leaf in the lane ahead, or
+// the ground where the scan plane pitches into a bump, hides the box as completely as the
+// headland's open ground empties it, and only the second is a row end (issue 11: "many" weeds
+// in a 0.8 m vegetable bed ended the row 3.5 m early; rough zoo vineyards ended it at the first
+// bump). Bins of shadow_bin_deg over the lane's angular span at the box seen from the scanner
+// (a weed touching it hides the whole box); a bin is shadowed when its nearest return lies
+// before the box (x < box_x_min) inside the lane, or between two returns of a wall.
+double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig& c,
+                      const Lane& lane, const Eigen::Vector2f& sensor) {
+  const double dx = c.box_x_min - double(sensor.x());
+  if (!(dx > 0.0)) return 0.0;  // the scanner at or beyond the box: nothing can hide it
+  ShadowBins bins(std::atan2(lane.right - double(sensor.y()), dx),
+                  std::atan2(lane.left - double(sensor.y()), dx),
+                  c.shadow_bin_deg * std::numbers::pi / 180.0);
+  const std::vector<Return> rs = returns_by_bearing(pts, c, lane, sensor);
+  for (const Return& r : rs) bins.mark(r.bearing, r.bearing, r.range, r.near);
+  close_walls(rs, c, lane, bins);
+  return bins.share();
 }
 
 // The followed rows' extent: the nearest and the farthest x_max of the followed rows, when
@@ -113,6 +203,8 @@ void EndOfRowConfig::validate() const {
   core::check_positive(scan_point_threshold, "scan_point_threshold");
   core::check_range(max_shadowed, 0.0, 1.0, "max_shadowed");
   core::check_range(shadow_bin_deg, 0.05, 45.0, "shadow_bin_deg");
+  core::check_non_negative(shadow_link, "shadow_link");
+  core::check_range(shadow_wall, 0.0, 1.0, "shadow_wall");
   core::check_positive(extent_distance, "extent_distance");
   core::check_range(blind_near_ratio, 0.0, 1.0, "blind_near_ratio");
   core::check_positive(blind_history, "blind_history");
@@ -170,11 +262,11 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   const bool rows_continue = extent && extent->farthest > c.box_x_max;
   // A planar scan's view of the box hidden by something nearer: neither cue is evidence (the
   // rows' tracked extent ends where the occluder hides them, too).
-  const bool seen = !planar || shadowed_share(points_base, c, hw, sensor_base) <= c.max_shadowed;
-  const bool count_end =
-      !rows_continue && seen &&
-      (planar ? r.box_points < c.scan_point_threshold
-              : n.left < c.point_threshold && n.right < c.point_threshold);
+  const bool seen = !planar || shadowed_share(points_base, c, lane_at_box(tracking, c, hw),
+                                              sensor_base) <= c.max_shadowed;
+  const bool count_end = !rows_continue && seen &&
+                         (planar ? r.box_points < c.scan_point_threshold
+                                 : n.left < c.point_threshold && n.right < c.point_threshold);
   // Extent cue: every followed row ends (a gap in one row ends that row's support only).
   const bool extent_end = c.use_extent && seen && extent && extent->farthest < c.extent_distance;
   r.frame_positive = count_end || extent_end;

@@ -56,6 +56,10 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
   core::check(mode != StackMode::navigate || parts_.controller != nullptr, "controller",
               "missing");
+  // Centroids of neighbouring voxels of one surface lie within two edges (end of row's shadow
+  // test, issue 11).
+  if (config_.end_of_row.shadow_link <= 0.0)
+    config_.end_of_row.shadow_link = 2.0 * parts_.pipeline->preprocess_config().voxel.voxel_size;
   end_of_row_ = std::make_unique<EndOfRowDetector>(config_.end_of_row);
   navigator_ = std::make_unique<Navigator>(config_.navigator, std::move(order), first_turn,
                                            config_.end_of_row.box_x_min);

@@ -66,6 +66,8 @@ class DetectionPipeline {
   void set_data_filter(std::optional<core::DataFilterBoxes> boxes) { filter_ = std::move(boxes); }
 
   const RowDetector& detector() const { return *detector_; }
+  /// The preprocessing chain's configuration (e.g. its voxel edge: the spacing of last_points()).
+  const preprocess::PreprocessConfig& preprocess_config() const { return preprocessor_.config(); }
   const Eigen::Isometry3d& T_base_lidar() const { return T_base_lidar_; }
   /// Points handed to the detector in the last frame (base frame, after preprocessing).
   const std::vector<Eigen::Vector2f>& last_points() const { return last_points_; }

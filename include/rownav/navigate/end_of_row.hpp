@@ -47,6 +47,20 @@ struct EndOfRowConfig {
   /// corridor band is unseen, not empty (a weed or leaf in the lane ahead; issue 11)
   double max_shadowed = 0.5;
   double shadow_bin_deg = 1.0;  ///< [deg] angular bins of that shadow test (rownav)
+  /// [m] planar scans: two near returns next to each other in bearing and closer than this
+  /// are one surface in that shadow test. 0: twice the detection pipeline's voxel edge (the
+  /// centroids of neighbouring cells lie closer than that; NavStack sets it). The ground seen
+  /// across a rough lane steps in range where the plane grazes a ridge: at sqrt(2) edges one
+  /// zoo vineyard's wall broke in two halves, each under shadow_wall (issue 11, rownav)
+  double shadow_link = 0.0;
+  /// [-] a chain of such returns that crosses this share of the lane's width is a wall and hides
+  /// the bearings between its returns: after a voxel grid the ground across the lane (the scan
+  /// plane pitched into a bump) is a chain of cell centroids about one voxel apart that leaves
+  /// most bins of shadow_bin_deg without a return of its own, and the empty box behind it read
+  /// as a row end (issue 11: 4 of 8 random zoo vineyards ended the first row at a bump). A
+  /// clump of weeds narrower than this keeps its gaps (Malavazi 2018's many-weeds beds lost
+  /// 10-20 points of success when every chain closed its gaps) (rownav)
+  double shadow_wall = 0.5;
   /// [-] planar scans: a frame whose returns beside the robot (x in [0, box_x_min), inside the
   /// box's half width) are fewer than this fraction of their median over the last blind_history
   /// frames is blind (the scanner inside a weed taller than its mount, a dropout): it neither
@@ -54,7 +68,7 @@ struct EndOfRowConfig {
   /// blind scanner sees nothing ahead either (issue 11: "many" weeds in a 2D vineyard ended
   /// every first row after 5 m) (rownav)
   double blind_near_ratio = 0.25;
-  int blind_history = 25;  ///< [frames] of that median (1 s of a 25 Hz scanner) (rownav)
+  int blind_history = 25;        ///< [frames] of that median (1 s of a 25 Hz scanner) (rownav)
   bool use_extent = true;        ///< also end when every followed row's x_max < extent_distance
   double extent_distance = 3.0;  ///< [m] all followed rows ending closer than this: row end ahead
 
@@ -73,6 +87,8 @@ struct EndOfRowConfig {
     v("scan_point_threshold", s.scan_point_threshold);
     v("max_shadowed", s.max_shadowed);
     v("shadow_bin_deg", s.shadow_bin_deg);
+    v("shadow_link", s.shadow_link);
+    v("shadow_wall", s.shadow_wall);
     v("blind_near_ratio", s.blind_near_ratio);
     v("blind_history", s.blind_history);
     v("use_extent", s.use_extent);
