@@ -244,6 +244,7 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   EndOfRowResult r;
   if (planar && blind(n.near)) {  // no evidence either way (the count keeps its state)
     r.blind = true;
+    r.box_seen = false;
     r.end_detected = declared_;
     r.confidence = declared_ ? 1.0 : std::min(1.0, double(positives_) / c.confirm_frames);
     return r;
@@ -270,6 +271,7 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   // Extent cue: every followed row ends (a gap in one row ends that row's support only).
   const bool extent_end = c.use_extent && seen && extent && extent->farthest < c.extent_distance;
   r.frame_positive = count_end || extent_end;
+  r.box_seen = seen;
   positives_ = r.frame_positive ? positives_ + 1 : 0;
   declared_ = declared_ || positives_ >= c.confirm_frames;
   r.end_detected = declared_;

@@ -24,6 +24,28 @@ bool reached_rows(const track::RowTracking& t, double reach) {
   return !any;
 }
 
+/// Whether a followed row goes on past x = from (base frame): the returns within `across` of
+/// its line span more than `length` along it beyond from (a ridge or a weed that hid the rows
+/// leaves them there; clutter across the headland crosses the line in a point or two). Without a
+/// followed row: true.
+bool row_goes_on(const track::RowTracking& t, std::span<const Eigen::Vector2f> pts, double from,
+                 double across, double length) {
+  bool any = false;
+  for (const int i : {t.left, t.right}) {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) continue;
+    any = true;
+    const core::Line2& line = t.rows[static_cast<std::size_t>(i)].line_base;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& p : pts) {
+      const Eigen::Vector2d q = p.cast<double>();
+      if (q.x() <= from || std::abs(line.signed_distance(q)) > across) continue;
+      lo = std::min(lo, q.x()), hi = std::max(hi, q.x());
+    }
+    if (hi - lo > length) return true;
+  }
+  return !any;  // no followed row left to look along: cannot tell, it may go on
+}
+
 /// [m] free width between the followed rows' inner canopy edges; nullopt without both rows.
 std::optional<double> clear_width(const track::RowTracking& t) {
   if (t.left < 0 || t.right < 0 || t.left >= static_cast<int>(t.rows.size()) ||
@@ -72,6 +94,7 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(exit_distance, "exit_distance");
   core::check_non_negative(exit_clearance, "exit_clearance");
   core::check_positive(perception_timeout, "perception_timeout");
+  core::check_non_negative(lost_rows_end_reach, "lost_rows_end_reach");
   core::check_non_negative(arm_reach, "arm_reach");
   core::check_non_negative(narrow_frames, "narrow_frames");
   core::check_non_negative(narrow_margin, "narrow_margin");
@@ -162,7 +185,8 @@ std::optional<StateEffort> Navigator::effort() const {
       return exit_effort_;
     case NavState::turning:
     case NavState::headland:
-      if (manoeuvre_) return StateEffort{manoeuvre_->planned_distance(), manoeuvre_->planned_time()};
+      if (manoeuvre_)
+        return StateEffort{manoeuvre_->planned_distance(), manoeuvre_->planned_time()};
       return std::nullopt;
     case NavState::entering: {
       const double d = config_.entry_max_depth + exit_distance_;
@@ -235,13 +259,27 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   const bool seen = in.observation.status != core::DetectionStatus::no_rows &&
                     in.tracking.status != track::TrackStatus::lost;
   if (seen) last_seen_ = in.stamp;
-  if (in.stamp - last_seen_ > config_.perception_timeout)
+  if (in.stamp - last_seen_ > config_.perception_timeout) {
+    // Rows lost just before the end they were seen to have (standing still in odom) while the
+    // lane ahead is in view: the detector ran out of row, a planar one with a few metres left
+    // (issue 11), not a blind robot. Leave the row as at a detected end. A ridge or a weed
+    // also stands still in odom, but hides the lane (end-of-row shadow test), and rows that go
+    // on leave their returns beyond it.
+    const auto ahead = ends_.settled_end_ahead();
+    const auto& settle = config_.row_end_estimate;
+    if (at_rows_ && in.end_of_row.box_seen && ahead && *ahead <= config_.lost_rows_end_reach &&
+        !row_goes_on(in.tracking, in.points_base, *ahead + settle.settle_tolerance,
+                     settle.settle_tolerance, settle.settle_distance)) {
+      start_exit(in, out, "rows lost " + fmt(*ahead) + " m before their settled end");
+      return exiting(in.T_odom_base, out, in.stamp);
+    }
     return stop(StopReason::perception_lost, out, in.stamp,
                 "no rows for " + fmt(in.stamp - last_seen_) + " s" +
                     (in.points_base.empty()
                          ? " and no points in the detection window (sensor above the crop, "
                            "or pointed away from it?)"
                          : ""));
+  }
   if (const auto obstacle = obstacle_ahead(in))
     return stop(StopReason::obstacle, out, in.stamp, *obstacle);
   if (const auto blocked = held_by_obstacle(in))
@@ -264,21 +302,24 @@ void Navigator::in_row(const NavInput& in, NavOutput& out) {
   // at the rows (issue 10: leek fields of the zoo latched a row end 1.5 m before the first plant
   // and drove out by odometry at once).
   if (!at_rows_) out.reset_end_of_row = true;
-  if (in.end_of_row.end_detected && centre && at_rows_) {
-    state_ = NavState::exiting;
-    blocked_since_.reset();
-    exit_distance_ = exit_distance(in);
-    if (!ends_.end_arc()) {  // no row end seen: the detector's distance, else the box's near edge
-      const double ahead = in.end_of_row.distance_to_end.value_or(end_box_near_);
-      ends_.set_end_arc(centre->arc(in.T_odom_base.translation()) + ahead);
-    }
-    const double end = *ends_.end_arc();
-    const double left = end - centre->arc(in.T_odom_base.translation()) + exit_distance_;
-    exit_effort_ = StateEffort{std::max(0.0, left), std::max(0.0, left) / config_.row_speed};
-    out.events.push_back({in.stamp, NavEventKind::row_end, order_[leg_], centre->at(end),
-                          "row end detected, " +
-                              fmt(end - centre->arc(in.T_odom_base.translation())) + " m ahead"});
+  if (in.end_of_row.end_detected && centre && at_rows_) start_exit(in, out, "row end detected");
+}
+
+void Navigator::start_exit(const NavInput& in, NavOutput& out, const std::string& why) {
+  const core::Line2& centre = *ends_.centre();
+  state_ = NavState::exiting;
+  blocked_since_.reset();
+  exit_distance_ = exit_distance(in);
+  if (!ends_.end_arc()) {  // no row end seen: the detector's distance, else the box's near edge
+    const double ahead = in.end_of_row.distance_to_end.value_or(end_box_near_);
+    ends_.set_end_arc(centre.arc(in.T_odom_base.translation()) + ahead);
   }
+  const double end = *ends_.end_arc();
+  const double left = end - centre.arc(in.T_odom_base.translation()) + exit_distance_;
+  exit_effort_ = StateEffort{std::max(0.0, left), std::max(0.0, left) / config_.row_speed};
+  out.events.push_back(
+      {in.stamp, NavEventKind::row_end, order_[leg_], centre.at(end),
+       why + ", " + fmt(end - centre.arc(in.T_odom_base.translation())) + " m ahead"});
 }
 
 double Navigator::exit_distance(const NavInput& in) const {

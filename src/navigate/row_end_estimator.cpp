@@ -36,8 +36,7 @@ void RowEndEstimator::update(const track::RowTracking& t, const core::Pose2& T,
   auto end_of = [&](int i) -> std::optional<Eigen::Vector2d> {
     if (i < 0 || i >= static_cast<int>(t.rows.size())) return std::nullopt;
     const auto& r = t.rows[static_cast<std::size_t>(i)];
-    if (r.x_max > config_.max_range || r.support < config_.min_support ||
-        r.last_seen < frame_stamp)
+    if (r.x_max > config_.max_range || r.support < config_.min_support || r.last_seen < frame_stamp)
       return std::nullopt;
     return T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
   };
@@ -49,7 +48,20 @@ void RowEndEstimator::update(const track::RowTracking& t, const core::Pose2& T,
     for (const auto& e : {left_end_, right_end_})
       if (e) arc += centre_->arc(*e), ++n;
     end_arc_ = arc / n;
+    // Settling: the end point held still (within settle_tolerance) while the robot drove on.
+    const Eigen::Vector2d end = centre_->at(*end_arc_);
+    robot_ = T.translation();
+    if (!anchor_end_ || (end - *anchor_end_).norm() > config_.settle_tolerance) {
+      anchor_end_ = end;
+      anchor_robot_ = robot_;
+    }
   }
+}
+
+std::optional<double> RowEndEstimator::settled_end_ahead() const {
+  if (!centre_ || !end_arc_ || !anchor_end_) return std::nullopt;
+  if ((robot_ - anchor_robot_).norm() < config_.settle_distance) return std::nullopt;
+  return *end_arc_ - centre_->arc(robot_);
 }
 
 double RowEndEstimator::spacing() const {
@@ -65,6 +77,7 @@ void RowEndEstimator::reset() {
   left_ends_.clear();
   right_ends_.clear();
   end_arc_.reset();
+  anchor_end_.reset();
 }
 
 }  // namespace rownav::navigate

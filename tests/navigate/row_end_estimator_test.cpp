@@ -38,9 +38,9 @@ TEST(RowEndEstimator, RowEndsInViewAreMappedIntoOdomAlongTheCentreLine) {
 TEST(RowEndEstimator, FarThinOrStaleRowsGiveNoEnd) {
   const RowEndEstimatorConfig c;
   RowEndEstimator far, thin, stale;
-  far.update(corridor(c.max_range + 0.5, 1.0), {}, 1.0);   // the sensor's reach, not the end
+  far.update(corridor(c.max_range + 0.5, 1.0), {}, 1.0);  // the sensor's reach, not the end
   thin.update(corridor(4.0, 1.0, 1.8, c.min_support - 1), {}, 1.0);
-  stale.update(corridor(4.0, 0.9), {}, 1.0);               // coasting: an older frame's extent
+  stale.update(corridor(4.0, 0.9), {}, 1.0);  // coasting: an older frame's extent
   for (const auto* e : {&far, &thin, &stale}) {
     EXPECT_FALSE(e->left_end() || e->right_end());
     EXPECT_FALSE(e->end_arc());
@@ -72,12 +72,33 @@ TEST(RowEndEstimator, SpacingIsARunningMeanKeptAcrossCorridors) {
 TEST(RowEndEstimator, WithoutATrackerSpacingTheTwoEndsGiveIt) {
   RowEndEstimator e;
   e.update(corridor(4.0, 0.0, 0.0), {}, 0.0);  // a tracker that gives no spacing
-  EXPECT_NEAR(e.spacing(), 0.0, 1e-12);  // rows at +-0: the ends coincide
+  EXPECT_NEAR(e.spacing(), 0.0, 1e-12);        // rows at +-0: the ends coincide
   RowEndEstimator f;
   track::RowTracking t = corridor(4.0, 0.0, 2.0);
   t.row_spacing = 0.0;
   f.update(t, {}, 0.0);
   EXPECT_NEAR(f.spacing(), 2.0, 1e-9);
+}
+
+TEST(RowEndEstimator, AnEndStandingStillInOdomSettlesAnExtentMovingWithTheRobotDoesNot) {
+  // Driving 0.1 m a frame: a real end stays at x = 8 m (odom); an extent cut by the sensor's
+  // reach or an occluder stays 4 m ahead of the robot and never settles (issue 11).
+  const RowEndEstimatorConfig c;
+  RowEndEstimator fixed, moving;
+  for (int k = 0; k <= 20; ++k) {
+    const double x = 0.1 * k;
+    const core::Pose2 T(x, 0.0, 0.0);
+    fixed.update(corridor(8.0 - x, k), T, k);
+    moving.update(corridor(4.0, k), T, k);
+    if (x + 1e-9 < c.settle_distance) {
+      EXPECT_FALSE(fixed.settled_end_ahead()) << "at x = " << x;
+    }
+    EXPECT_FALSE(moving.settled_end_ahead()) << "at x = " << x;
+  }
+  ASSERT_TRUE(fixed.settled_end_ahead());
+  EXPECT_NEAR(*fixed.settled_end_ahead(), 6.0, 1e-9);
+  fixed.reset();
+  EXPECT_FALSE(fixed.settled_end_ahead());
 }
 
 }  // namespace

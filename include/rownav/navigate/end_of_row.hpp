@@ -113,6 +113,9 @@ struct EndOfRowResult {
   /// planar scan: the sensor saw too little beside the robot to judge (blind_near_ratio); the
   /// frame neither confirmed nor cleared the end
   bool blind = false;
+  /// the box was in view this frame (planar scans: not shadowed by nearer returns in the lane,
+  /// not blind; 3D clouds: always)
+  bool box_seen = true;
 };
 
 /// End-of-row detector. Stateful (confirmation counter); update() never throws.

@@ -11,8 +11,8 @@
 #include <array>
 #include <cstdint>
 #include <deque>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -66,7 +66,7 @@ enum class NavEventKind : std::uint8_t {
   entered_corridor,
   safe_stop,
   mission_done,
-  input_stale,   ///< the watchdog zeroes the command: LiDAR or odometry too old
+  input_stale,    ///< the watchdog zeroes the command: LiDAR or odometry too old
   input_resumed,  ///< fresh inputs again: the command is released
   /// the lane between the followed rows' canopies is narrower than the robot: it will brush
   /// or crush plants however well it steers (once per corridor; issue 11)
@@ -100,6 +100,13 @@ struct NavigatorConfig {
   /// widths keep exit_distance)
   double exit_clearance = 0.5;
   double perception_timeout = 0.5;  ///< [s] in a row without rows seen -> safe stop
+  /// [m] ...unless the row ends this close ahead by the settled row-end estimate
+  /// (row_end_estimate.settle_*): then the rows ran out, the robot leaves the row as at a
+  /// detected end. A planar detector loses rows shorter than ~3.5 m (PEARL on an LMS1xx in
+  /// quick_vineyard); the end-of-row box's far edge (5 m) bounds it. Not when the lane ahead is
+  /// hidden (end-of-row shadow test) or a followed row's returns go on past that end for
+  /// row_end_estimate.settle_distance (issue 11, rownav)
+  double lost_rows_end_reach = 5.0;
   /// [m] a mission starts in the headland before its first corridor: the end of row is armed
   /// only once a followed row's support begins within this distance ahead of the base (the robot
   /// is at the rows). Before that, the empty ground between the robot and the row start reads as
@@ -116,16 +123,16 @@ struct NavigatorConfig {
   /// row follower's lateral error and the plants' size spread take; rownav: mean displacement
   /// 0.01-0.03 m in BENCHMARK.md, heads 15 % larger than their mean)
   double narrow_margin = 0.05;
-  double stop_distance = 0.5;       ///< [m] obstacle this close to the footprint front -> safe stop
-  int obstacle_min_points = 10;     ///< [points] in the stop box that make an obstacle
+  double stop_distance = 0.5;    ///< [m] obstacle this close to the footprint front -> safe stop
+  int obstacle_min_points = 10;  ///< [points] in the stop box that make an obstacle
   /// [s] in a row, something in the controllers' front rectangle (which slows them down from
   /// fewer points than the stop box needs) holding the robot below blocked_speed this long ->
   /// safe stop `obstacle`: a robot that waits for ever for a weed to move is stalled, not safe
   /// (issue 13; a 2D vineyard run with many weeds sat 1,770 s in front of one) (rownav)
   double blocked_timeout = 10.0;
-  double blocked_speed = 0.05;  ///< [m/s] below this the robot counts as held (rownav)
-  double entry_check_depth = 1.5;   ///< [m] into the target corridor before checking the place
-  double entry_max_depth = 6.0;     ///< [m] entering without a corridor seen -> perception_lost
+  double blocked_speed = 0.05;     ///< [m/s] below this the robot counts as held (rownav)
+  double entry_check_depth = 1.5;  ///< [m] into the target corridor before checking the place
+  double entry_max_depth = 6.0;    ///< [m] entering without a corridor seen -> perception_lost
   RowEndEstimatorConfig row_end_estimate;  ///< row ends and spacing of the corridor being left
   double entry_gate = 0.5;    ///< [-] x spacing: observed vs planned corridor centre, right place
   double line_gain = 1.5;     ///< [1/m] lateral gain of the odometry line follower (exit / entry)
@@ -141,6 +148,7 @@ struct NavigatorConfig {
     v("exit_distance", s.exit_distance);
     v("exit_clearance", s.exit_clearance);
     v("perception_timeout", s.perception_timeout);
+    v("lost_rows_end_reach", s.lost_rows_end_reach);
     v("arm_reach", s.arm_reach);
     v("narrow_frames", s.narrow_frames);
     v("narrow_margin", s.narrow_margin);
@@ -233,6 +241,8 @@ class Navigator {
 
  private:
   void in_row(const NavInput& in, NavOutput& out);
+  /// in_row -> exiting at the row end (`why` starts the row_end event's message).
+  void start_exit(const NavInput& in, NavOutput& out, const std::string& why);
   void exiting(const core::Pose2& T, NavOutput& out, double stamp);
   void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
@@ -255,21 +265,21 @@ class Navigator {
   double exit_distance_ = 0.0;  // [m] this row's exit: exit_distance or the canopy's reach
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
-  bool at_rows_ = false;  // the end of row is armed (the robot has reached the rows)
-  int narrow_count_ = 0;       // this corridor's frames with a lane narrower than the robot
-  int lane_frames_ = 0;        // this corridor's frames with both rows followed
-  bool narrow_said_ = false;   // narrow_corridor reported for this corridor
+  bool at_rows_ = false;      // the end of row is armed (the robot has reached the rows)
+  int narrow_count_ = 0;      // this corridor's frames with a lane narrower than the robot
+  int lane_frames_ = 0;       // this corridor's frames with both rows followed
+  bool narrow_said_ = false;  // narrow_corridor reported for this corridor
   void check_lane(const NavInput& in, NavOutput& out);
   std::size_t leg_ = 0;  // index in order_ of the corridor being served
   int served_ = 0, turns_ = 0;
   double last_seen_ = -1.0, last_stamp_ = 0.0;
   std::optional<double> blocked_since_;  // [s] in_row: held by a front obstacle since
-  double spacing_ = 0.0;   // [m] spacing of the turn in progress (entry gate, row ends)
-  RowEndEstimator ends_;   // the corridor being left
+  double spacing_ = 0.0;  // [m] spacing of the turn in progress (entry gate, row ends)
+  RowEndEstimator ends_;  // the corridor being left
   std::unique_ptr<HeadlandManoeuvre> manoeuvre_;
   RobotLimits robot_;
   std::vector<Eigen::Vector2d> row_ends_;
-  std::optional<core::Line2> entry_seen_;  // target corridor centre seen while entering (odom)
+  std::optional<core::Line2> entry_seen_;   // target corridor centre seen while entering (odom)
   std::optional<StateEffort> exit_effort_;  // set when the exit starts
 };
 

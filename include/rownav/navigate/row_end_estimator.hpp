@@ -22,6 +22,11 @@ struct RowEndEstimatorConfig {
   double max_range = 7.0;
   int min_support = 3;      ///< [points] a row seen by fewer points gives no end (rownav)
   int spacing_window = 50;  ///< [frames] running mean of the tracker's spacing (~5 s at 10 Hz)
+  /// [m] the row-end estimate is settled once the robot has driven this far while the estimated
+  /// end point stayed within settle_tolerance of where it was (odom): a real end stands still,
+  /// an extent cut by the sensor's reach or by an occluder moves along with the robot (rownav)
+  double settle_distance = 1.0;
+  double settle_tolerance = 0.3;  ///< [m] (rownav)
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -29,12 +34,16 @@ struct RowEndEstimatorConfig {
     v("max_range", s.max_range);
     v("min_support", s.min_support);
     v("spacing_window", s.spacing_window);
+    v("settle_distance", s.settle_distance);
+    v("settle_tolerance", s.settle_tolerance);
   }
   void validate() const {
     core::check_positive(frames, "frames");
     core::check_positive(max_range, "max_range");
     core::check_positive(min_support, "min_support");
     core::check_positive(spacing_window, "spacing_window");
+    core::check_non_negative(settle_distance, "settle_distance");
+    core::check_positive(settle_tolerance, "settle_tolerance");
   }
 };
 
@@ -51,6 +60,9 @@ class RowEndEstimator {
   /// [m] row ends along centre() (mean of the left and right ends), once seen or set.
   const std::optional<double>& end_arc() const { return end_arc_; }
   void set_end_arc(double arc) { end_arc_ = arc; }
+  /// [m] the estimated end's distance ahead of the robot along centre() when that end has
+  /// settled (stood still in odom while the robot drove settle_distance), else nullopt.
+  std::optional<double> settled_end_ahead() const;
   const std::optional<Eigen::Vector2d>& left_end() const { return left_end_; }
   const std::optional<Eigen::Vector2d>& right_end() const { return right_end_; }
   /// [m] row spacing: running mean of the tracker's, else the distance between the two ends,
@@ -67,6 +79,8 @@ class RowEndEstimator {
   std::optional<Eigen::Vector2d> left_end_, right_end_;
   std::deque<Eigen::Vector2d> left_ends_, right_ends_;
   std::optional<double> end_arc_;
+  std::optional<Eigen::Vector2d> anchor_end_;  // the end point when it last moved (odom)
+  Eigen::Vector2d anchor_robot_ = Eigen::Vector2d::Zero(), robot_ = Eigen::Vector2d::Zero();
   double spacing_ = 0.0;
   int spacing_n_ = 0;
 };

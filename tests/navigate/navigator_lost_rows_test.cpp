@@ -1,0 +1,86 @@
+// Rows lost in a row: a safe stop, unless the rows ran out just before the end they were seen to
+// have (issue 11: PEARL on a 2D scan loses rows shorter than ~3.5 m before the end of row fires).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "rownav/navigate/navigator.hpp"
+
+namespace rownav::navigate {
+namespace {
+
+constexpr double kSpeed = 0.8;  // [m/s] along odom x
+constexpr double kEnd = 6.0;    // [m] odom x where the rows end
+
+// The robot at x = kSpeed t, rows at +-0.9 m from x = 0 to kEnd (odom), seen when `rows`; the
+// tracker keeps the followed rows while it coasts.
+NavInput frame(double t, bool rows) {
+  NavInput in;
+  in.stamp = t;
+  const double x = kSpeed * t;
+  in.T_odom_base = core::Pose2(x, 0.0, 0.0);
+  in.observation.status = rows ? core::DetectionStatus::ok : core::DetectionStatus::no_rows;
+  if (rows) in.observation.corridor = core::CorridorObservation{0.0, 0.0, 1.8};
+  in.tracking.status = rows ? track::TrackStatus::tracking : track::TrackStatus::coasting;
+  in.tracking.row_spacing = 1.8;
+  in.tracking.centre_line_base = core::Line2({0.0, 0.0}, {1.0, 0.0});
+  for (const double y : {-0.9, 0.9}) {
+    track::TrackedRow r;
+    r.line_base = core::Line2({0.0, y}, {1.0, 0.0});
+    r.offset = y;
+    r.x_min = -x;
+    r.x_max = kEnd - x;
+    r.support = 40;
+    r.last_seen = rows ? t : 0.0;
+    in.tracking.rows.push_back(r);
+  }
+  in.tracking.right = 0, in.tracking.left = 1;
+  return in;
+}
+
+// Drives with rows seen until the rows end 3.5 m ahead, then without; the state at `t_end`.
+NavOutput lose_rows(const std::vector<Eigen::Vector2f>& points, bool box_seen,
+                    double lost_from = (kEnd - 3.5) / kSpeed, double t_end = 4.0) {
+  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left};
+  NavOutput out;
+  for (double t = 0.0; t <= t_end && out.state != NavState::safe_stop; t += 0.04) {
+    NavInput in = frame(t, t < lost_from);
+    in.points_base = points;
+    in.end_of_row.box_seen = box_seen;
+    out = nav.step(in);
+    if (out.state != NavState::in_row) break;
+  }
+  return out;
+}
+
+TEST(NavigatorLostRows, RowsLostJustBeforeTheirSettledEndLeaveTheRow) {
+  const NavOutput out = lose_rows({}, true);
+  EXPECT_EQ(out.state, NavState::exiting);
+  ASSERT_FALSE(out.events.empty());
+  EXPECT_EQ(out.events.front().kind, NavEventKind::row_end);
+}
+
+TEST(NavigatorLostRows, ARowThatGoesOnPastThatEndIsALossOfPerception) {
+  // Seen from the robot 2.5 m before the end: one row's face goes on for 2 m past it.
+  std::vector<Eigen::Vector2f> row;
+  for (double x = 4.0; x < 6.0; x += 0.15) row.emplace_back(float(x), 0.9f);
+  EXPECT_EQ(lose_rows(row, true).stop_reason, StopReason::perception_lost);
+}
+
+TEST(NavigatorLostRows, AHiddenLaneIsALossOfPerception) {
+  EXPECT_EQ(lose_rows({}, false).stop_reason, StopReason::perception_lost);
+}
+
+TEST(NavigatorLostRows, RowsLostFarBeforeTheirEndAreALossOfPerception) {
+  // Lost 5.5 m before the end (beyond lost_rows_end_reach 5 m).
+  EXPECT_EQ(lose_rows({}, true, 0.5 / kSpeed).stop_reason, StopReason::perception_lost);
+}
+
+TEST(NavigatorLostRows, ReachIsValidated) {
+  NavigatorConfig c;
+  c.lost_rows_end_reach = -1.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rownav::navigate
