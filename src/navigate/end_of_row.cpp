@@ -58,12 +58,10 @@ struct Lane {
 Lane lane_at_box(const track::RowTracking& t, const EndOfRowConfig& c, double hw) {
   const int n = static_cast<int>(t.rows.size());
   if (t.left < 0 || t.right < 0 || t.left >= n || t.right >= n) return {-hw, hw};
+  // The inner faces at the box's near edge (rows oriented forward, headings in the base frame).
   const auto face = [&](int i, double side) {
     const track::TrackedRow& r = t.rows[static_cast<std::size_t>(i)];
-    const double at = c.box_x_min * std::tan(r.heading);
-    if (std::isfinite(r.centre_offset) && r.half_width > 0.0)
-      return r.centre_offset + at + side * r.half_width;
-    return r.offset + at;  // a fitted face (planar scan): already the edge
+    return track::edge_offset(r, side) + c.box_x_min * std::tan(r.heading);
   };
   const Lane lane{face(t.right, 1.0), face(t.left, -1.0)};
   if (!std::isfinite(lane.right) || !std::isfinite(lane.left) || lane.left <= lane.right)

@@ -51,13 +51,8 @@ std::optional<double> clear_width(const track::RowTracking& t) {
   if (t.left < 0 || t.right < 0 || t.left >= static_cast<int>(t.rows.size()) ||
       t.right >= static_cast<int>(t.rows.size()))
     return std::nullopt;
-  const auto edge = [](const track::TrackedRow& r, double side) {
-    if (std::isfinite(r.centre_offset) && r.half_width > 0.0)
-      return r.centre_offset + side * r.half_width;
-    return r.offset;  // a fitted face (planar scan): already the edge
-  };
-  const double w = edge(t.rows[static_cast<std::size_t>(t.left)], -1.0) -
-                   edge(t.rows[static_cast<std::size_t>(t.right)], 1.0);
+  const double w = track::edge_offset(t.rows[static_cast<std::size_t>(t.left)], -1.0) -
+                   track::edge_offset(t.rows[static_cast<std::size_t>(t.right)], 1.0);
   return std::isfinite(w) ? std::optional<double>(w) : std::nullopt;
 }
 

@@ -4,14 +4,15 @@
 /// CONTRACT shared by the trackers (model_matching, line_ekf, model_filter), navigate/ and the
 /// closed-loop runner. Implementations may add fields but must keep these.
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include "rownav/core/data_filter.hpp"
 #include "rownav/core/config_fields.hpp"
+#include "rownav/core/data_filter.hpp"
 #include "rownav/core/line2.hpp"
 #include "rownav/core/pose2.hpp"
 #include "rownav/core/row_observation.hpp"
@@ -42,6 +43,15 @@ struct TrackedRow {
   double centre_offset = std::numeric_limits<double>::quiet_NaN();
   double half_width = 0.0;  ///< [m] canopy half width (0: unknown)
 };
+
+/// [m] lateral position at x = 0 (left +) of a tracked row's canopy edge towards `side` (+1:
+/// its left edge, -1: its right edge): the centre line +- the half width, or the fitted line
+/// itself when that is already the face (a planar scan: no centre line, no half width).
+inline double edge_offset(const TrackedRow& r, double side) {
+  if (std::isfinite(r.centre_offset) && r.half_width > 0.0)
+    return r.centre_offset + side * r.half_width;
+  return r.offset;
+}
 
 /// A tracker's answer for one frame.
 struct RowTracking {
