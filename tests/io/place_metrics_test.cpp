@@ -71,20 +71,26 @@ ClosedLoopSetup one_corridor_with_place(const sim::Field& field) {
   return s;
 }
 
+// Corridor 0 served, the place right in most frames, and two key locations: the entry and the
+// exit of corridor 0, each near its end of the corridor centre line.
+void expect_one_corridor_placed(const RunSummary& sum) {
+  EXPECT_EQ(sum.corridors_served, 1);
+  ASSERT_TRUE(sum.place.accuracy.has_value());
+  EXPECT_GT(*sum.place.accuracy, 0.9);
+  ASSERT_EQ(sum.place.keys.size(), 2u);
+  EXPECT_EQ(sum.place.keys[0].to, "lane");
+  EXPECT_EQ(sum.place.keys[1].to, "headland");
+  ASSERT_TRUE(sum.place.key_error_max.has_value());
+  EXPECT_LT(*sum.place.key_error_max, 0.5);
+}
+
 TEST(PlaceMetrics, OneCorridorInClosedLoopWithTruthLabels) {
   const sim::Field field = build_field(small_vineyard(), ".");
   ClosedLoopSetup s = one_corridor_with_place(field);
   const RunResult r = run_closed_loop(s);
   const RunSummary sum = summarize(r, sim::FieldTruth(field));
-  EXPECT_EQ(sum.corridors_served, 1);
   EXPECT_EQ(static_cast<std::size_t>(sum.place.frames), r.frames.size());
-  ASSERT_TRUE(sum.place.accuracy.has_value());
-  EXPECT_GT(*sum.place.accuracy, 0.9);
-  // The entry and the exit of corridor 0, each near its end of the corridor centre line.
-  ASSERT_EQ(sum.place.keys.size(), 2u);
-  EXPECT_EQ(sum.place.keys[0].to, "lane");
-  EXPECT_EQ(sum.place.keys[1].to, "headland");
-  EXPECT_LT(*sum.place.key_error_max, 0.5);
+  expect_one_corridor_placed(sum);
 }
 
 TEST(PlaceMetrics, OneCorridorInClosedLoopWithCameraLabels) {
@@ -98,13 +104,7 @@ TEST(PlaceMetrics, OneCorridorInClosedLoopWithCameraLabels) {
   s.camera.canopy_colour = s.camera.crop_colour;
   const RunResult r = run_closed_loop(s);
   const RunSummary sum = summarize(r, sim::FieldTruth(field));
-  EXPECT_EQ(sum.corridors_served, 1);
-  ASSERT_TRUE(sum.place.accuracy.has_value());
-  EXPECT_GT(*sum.place.accuracy, 0.9);
-  ASSERT_EQ(sum.place.keys.size(), 2u);
-  EXPECT_EQ(sum.place.keys[0].to, "lane");
-  EXPECT_EQ(sum.place.keys[1].to, "headland");
-  EXPECT_LT(*sum.place.key_error_max, 0.5);
+  expect_one_corridor_placed(sum);
 }
 
 }  // namespace
