@@ -210,8 +210,10 @@ void ModelMatchingTracker::describe(RowTracking& out) const {
     if (out.rows[i].offset < 0.0) out.right = static_cast<int>(i);
   }
   // Nehme 2021 sec. 3.3's median of successive differences, over the centre lines of every
-  // followable model, a difference spanning a missing row counted as two (issue 10).
-  out.row_spacing = robust_spacing(std::move(offsets));
+  // followable model, a difference spanning a missing row counted as two (issue 10). Two models
+  // give one difference, one spacing or two (a followed row lost in a gap, the row beyond it
+  // kept): then the base's estimate over the recent frames, which leaves such frames out.
+  if (offsets.size() > 2) out.row_spacing = robust_spacing(std::move(offsets));
 }
 
 }  // namespace rownav::track

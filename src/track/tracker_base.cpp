@@ -23,6 +23,9 @@ void TrackerConfig::validate() const {
   core::check_positive(max_yaw_rate_deg, "max_yaw_rate_deg");
   core::check_positive(default_row_spacing, "default_row_spacing");
   core::check_range(spacing_window, 1, 100000, "spacing_window");
+  core::check_range(gap_width_ratio, 0.0, 10.0, "gap_width_ratio");
+  core::check_range(settle_frames, 0, 100000, "settle_frames");
+  core::check_range(width_tolerance, 0.0, 1.0, "width_tolerance");
   core::check(std::isfinite(target_offset), "target_offset", "must be finite");
 }
 
@@ -35,6 +38,7 @@ void TrackerBase::reset() {
   last_ = RowTracking{};
   spacing_.reset();
   width_ = 0.0;
+  width_frames_ = 0;
 }
 
 RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pose2& T_odom_base) {
@@ -56,7 +60,7 @@ RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pos
   RowTracking out;
   out.stamp = obs.stamp;
   if (usable(obs) && correct(obs, T_odom_base)) {
-    spacing_.add(obs);
+    if (!sees_past_a_gap(obs)) spacing_.add(obs);
     last_seen_ = obs.stamp;
     out.status = TrackStatus::tracking;
   } else if (has_model() && obs.stamp - last_seen_ <= common_.max_coast_time) {
@@ -68,6 +72,7 @@ RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pos
   out.time_since_observation = has_model() ? obs.stamp - last_seen_ : 0.0;
   if (has_model()) {
     describe(out);
+    follow_nearer_past_a_gap(out);
     fill_centres(out);
     fill_deviations(out);
   }
@@ -82,6 +87,43 @@ RowTracking TrackerBase::update(const core::RowObservation& obs, const core::Pos
   finish(out);
   last_ = out;
   return out;
+}
+
+bool TrackerBase::wider_than_corridor(const core::Line2& left, const core::Line2& right) const {
+  const double spacing = spacing_.spacing();
+  if (width_frames_ < common_.settle_frames || !(width_ > 0.0) || !(spacing > 0.0)) return false;
+  const double w = spacing_between(left, right);
+  return std::isfinite(w) && w - width_ > common_.gap_width_ratio * spacing;
+}
+
+bool TrackerBase::sees_past_a_gap(const core::RowObservation& obs) const {
+  // Only a frame with two rows is ambiguous: with more, robust_spacing counts a difference that
+  // spans a missing row as two against the frame's other differences.
+  const int n = static_cast<int>(obs.rows.size());
+  if (n != 2 || obs.left < 0 || obs.right < 0 || obs.left >= n || obs.right >= n) return false;
+  return wider_than_corridor(obs.rows[static_cast<std::size_t>(obs.left)].line,
+                             obs.rows[static_cast<std::size_t>(obs.right)].line);
+}
+
+void TrackerBase::follow_nearer_past_a_gap(RowTracking& out) const {
+  if (out.left < 0 || out.right < 0) return;
+  const TrackedRow& l = out.rows[static_cast<std::size_t>(out.left)];
+  const TrackedRow& r = out.rows[static_cast<std::size_t>(out.right)];
+  if (!wider_than_corridor(l.line_base, r.line_base)) return;
+  // The followed row that went missing was replaced by the row beyond it: the farther one.
+  (std::abs(l.offset) > std::abs(r.offset) ? out.left : out.right) = -1;
+}
+
+void TrackerBase::update_width(const RowTracking& out, double width) {
+  const double w = std::max(width, 0.0);
+  // A width that moved breaks the settled corridor; one that held counts only when both rows
+  // were seen in this frame (models coasting through a gap keep whatever width they had).
+  const bool seen = out.rows[static_cast<std::size_t>(out.left)].last_seen >= out.stamp &&
+                    out.rows[static_cast<std::size_t>(out.right)].last_seen >= out.stamp;
+  const bool held = width_ > 0.0 && std::abs(w - width_) <= common_.width_tolerance * width_;
+  if (!held) width_frames_ = 0;
+  if (held && seen) ++width_frames_;
+  width_ = w;
 }
 
 void TrackerBase::fill_centres(RowTracking& out) const {
@@ -104,11 +146,13 @@ void TrackerBase::fill_deviations(RowTracking& out) {
   // A single row's corridor centre lies half the corridor width from its fitted line: the last
   // width measured between the followed lines, else the spacing less the canopy (issue 10: the
   // spacing is centre to centre, the lines are the corridor-side faces of opaque canopies).
-  if (has_l && has_r) width_ = std::max(spacing_between(row(out.left), row(out.right)), 0.0);
+  if (has_l && has_r) update_width(out, spacing_between(row(out.left), row(out.right)));
   const TrackedRow& one = out.rows[static_cast<std::size_t>(has_l ? out.left : out.right)];
   const double spacing = out.row_spacing > 0.0 ? out.row_spacing : common_.default_row_spacing;
   const double canopy = std::abs(one.centre_offset - one.offset);
-  out.corridor_width = width_ > 0.0 ? width_ : spacing > 2.0 * canopy ? spacing - 2.0 * canopy : spacing;
+  out.corridor_width = width_ > 0.0             ? width_
+                       : spacing > 2.0 * canopy ? spacing - 2.0 * canopy
+                                                : spacing;
   const double single = out.corridor_width;
   out.centre_line_base = has_l && has_r ? centre_between(row(out.left), row(out.right))
                          : has_l        ? centre_from_one(row(out.left), true, single)

@@ -31,6 +31,19 @@ struct TrackerConfig {
   /// [frames] row spacing (centre to centre, every row seen) and the followed rows' centre
   /// shifts are medians over the latest this many usable frames (~5 s at 10 Hz; issue 10)
   int spacing_window = 50;
+  /// [-] of the row spacing: a frame whose two rows stand this much further apart than the
+  /// followed rows did sees past a gap in a followed row (the row beyond it). It is left out of
+  /// the spacing (one difference of two spacings, it doubled the spacing over a 17 m gap; issue
+  /// 10, zoo:1:31), and a tracked pair that wide is not followed: the nearer row alone is, at
+  /// the corridor width, until the gap ends. A row missing widens the corridor by a whole
+  /// spacing; half of it is the midpoint. Only once the corridor has settled (settle_frames).
+  double gap_width_ratio = 0.5;
+  /// [frames] the corridor has settled when both followed rows were seen and their width held
+  /// within width_tolerance from frame to frame this many times in a row (5 s at 10 Hz). Pairs
+  /// followed while turning are no reference (2.06 m in a 6.6 m orchard, 0.35 m in 1.8 m rows):
+  /// measured against them, the corridor entered after the turn read as a gap.
+  int settle_frames = 50;
+  double width_tolerance = 0.2;  ///< [-] of the width; see settle_frames
   TargetRow target_row = TargetRow::none;  ///< implement row: none, left or right
   double target_offset =
       0.0;  ///< [m] wanted signed offset of the base from the target row (left +)
@@ -42,6 +55,9 @@ struct TrackerConfig {
     v("max_yaw_rate_deg", s.max_yaw_rate_deg);
     v("default_row_spacing", s.default_row_spacing);
     v("spacing_window", s.spacing_window);
+    v("gap_width_ratio", s.gap_width_ratio);
+    v("settle_frames", s.settle_frames);
+    v("width_tolerance", s.width_tolerance);
     v("target_row", s.target_row);
     v("target_offset", s.target_offset);
   }
@@ -94,7 +110,20 @@ class TrackerBase : public RowTracker {
   core::Pose2 last_pose_;
   RowTracking last_;
   RowSpacingEstimator spacing_;  // centre to centre, every row seen (issue 10)
-  double width_ = 0.0;  // [m] last width between the followed rows' lines
+  /// True when the observation has two rows, one either side, standing gap_width_ratio x the
+  /// spacing further apart than the followed rows of a settled corridor (width_): a followed row
+  /// is missing from it, the row beyond seen instead.
+  bool sees_past_a_gap(const core::RowObservation& obs) const;
+  /// True when lines `left` and `right` stand gap_width_ratio x the spacing further apart than
+  /// the followed rows of a settled corridor did (width_, settle_frames).
+  bool wider_than_corridor(const core::Line2& left, const core::Line2& right) const;
+  /// Unsets the farther of the followed pair when the pair is wider than the corridor.
+  void follow_nearer_past_a_gap(RowTracking& out) const;
+  /// The followed pair's width of this frame (width_) and for how long it has held.
+  void update_width(const RowTracking& out, double width);
+
+  double width_ = 0.0;    // [m] last width between the followed rows' lines
+  int width_frames_ = 0;  // successive frames the width held within width_tolerance
 };
 
 }  // namespace rownav::track
