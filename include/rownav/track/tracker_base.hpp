@@ -43,7 +43,7 @@ struct TrackerConfig {
   /// followed while turning are no reference (2.06 m in a 6.6 m orchard, 0.35 m in 1.8 m rows):
   /// measured against them, the corridor entered after the turn read as a gap.
   int settle_frames = 50;
-  double width_tolerance = 0.2;  ///< [-] of the width; see settle_frames
+  double width_tolerance = 0.2;            ///< [-] of the width; see settle_frames
   TargetRow target_row = TargetRow::none;  ///< implement row: none, left or right
   double target_offset =
       0.0;  ///< [m] wanted signed offset of the base from the target row (left +)
