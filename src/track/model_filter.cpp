@@ -198,6 +198,15 @@ bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Po
   return true;
 }
 
+void ModelFilterTracker::forget_side(bool left) {
+  // Issue 10: the side's model took the row beyond a gap (inside the 3 m initialisation window
+  // in 1.6 m rows); dropped, the side re-initialises on the nearest row, the near one once the
+  // gap ends. The width history goes too: it holds the far pair's widths, and against them the
+  // near row's pair read as inconsistent for good.
+  have_[left ? 0 : 1] = false;
+  spacings_.clear();
+}
+
 void ModelFilterTracker::describe(RowTracking& out) const {
   for (int s = 1; s >= 0; --s) {  // right first: sorted right to left
     if (!have_[s]) continue;

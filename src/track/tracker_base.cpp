@@ -105,13 +105,15 @@ bool TrackerBase::sees_past_a_gap(const core::RowObservation& obs) const {
                              obs.rows[static_cast<std::size_t>(obs.right)].line);
 }
 
-void TrackerBase::follow_nearer_past_a_gap(RowTracking& out) const {
+void TrackerBase::follow_nearer_past_a_gap(RowTracking& out) {
   if (out.left < 0 || out.right < 0) return;
   const TrackedRow& l = out.rows[static_cast<std::size_t>(out.left)];
   const TrackedRow& r = out.rows[static_cast<std::size_t>(out.right)];
   if (!wider_than_corridor(l.line_base, r.line_base)) return;
   // The followed row that went missing was replaced by the row beyond it: the farther one.
-  (std::abs(l.offset) > std::abs(r.offset) ? out.left : out.right) = -1;
+  const bool left = std::abs(l.offset) > std::abs(r.offset);
+  (left ? out.left : out.right) = -1;
+  forget_side(left);
 }
 
 void TrackerBase::update_width(const RowTracking& out, double width) {

@@ -96,6 +96,7 @@ class ModelFilterTracker : public TrackerBase {
   void predict(const core::Pose2& T_prev_now, const core::Pose2& T_odom_base, double dt) override;
   bool correct(const core::RowObservation& obs, const core::Pose2& T_odom_base) override;
   void describe(RowTracking& out) const override;
+  void forget_side(bool left) override;
   void finish(RowTracking& out) override;
 
  private:

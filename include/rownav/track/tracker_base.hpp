@@ -97,6 +97,9 @@ class TrackerBase : public RowTracker {
   }
   /// Last say on the output (e.g. a FIR filter); the default does nothing.
   virtual void finish(RowTracking& /*out*/) {}
+  /// The followed model on one side stands beyond a gap (follow_nearer_past_a_gap): a tracker
+  /// that keeps one model per side drops it, to take the nearer row again when the gap ends.
+  virtual void forget_side(bool /*left*/) {}
 
  private:
   void fill_deviations(RowTracking& out);
@@ -117,8 +120,9 @@ class TrackerBase : public RowTracker {
   /// True when lines `left` and `right` stand gap_width_ratio x the spacing further apart than
   /// the followed rows of a settled corridor did (width_, settle_frames).
   bool wider_than_corridor(const core::Line2& left, const core::Line2& right) const;
-  /// Unsets the farther of the followed pair when the pair is wider than the corridor.
-  void follow_nearer_past_a_gap(RowTracking& out) const;
+  /// Unsets (and forgets) the farther of the followed pair when the pair is wider than the
+  /// corridor.
+  void follow_nearer_past_a_gap(RowTracking& out);
   /// The followed pair's width of this frame (width_) and for how long it has held.
   void update_width(const RowTracking& out, double width);
 
