@@ -56,14 +56,11 @@ struct Lane {
   double right, left;  // [m] y bounds at x = box_x_min (base frame)
 };
 Lane lane_at_box(const track::RowTracking& t, const EndOfRowConfig& c, double hw) {
-  const int n = static_cast<int>(t.rows.size());
-  if (t.left < 0 || t.right < 0 || t.left >= n || t.right >= n) return {-hw, hw};
+  const auto f = track::inner_faces(t);
+  if (!f) return {-hw, hw};
   // The inner faces at the box's near edge (rows oriented forward, headings in the base frame).
-  const auto face = [&](int i, double side) {
-    const track::TrackedRow& r = t.rows[static_cast<std::size_t>(i)];
-    return track::edge_offset(r, side) + c.box_x_min * std::tan(r.heading);
-  };
-  const Lane lane{face(t.right, 1.0), face(t.left, -1.0)};
+  const Lane lane{f->right_face + c.box_x_min * std::tan(f->right->heading),
+                  f->left_face + c.box_x_min * std::tan(f->left->heading)};
   if (!std::isfinite(lane.right) || !std::isfinite(lane.left) || lane.left <= lane.right)
     return {-hw, hw};
   return lane;

@@ -48,11 +48,9 @@ bool row_goes_on(const track::RowTracking& t, std::span<const Eigen::Vector2f> p
 
 /// [m] free width between the followed rows' inner canopy edges; nullopt without both rows.
 std::optional<double> clear_width(const track::RowTracking& t) {
-  if (t.left < 0 || t.right < 0 || t.left >= static_cast<int>(t.rows.size()) ||
-      t.right >= static_cast<int>(t.rows.size()))
-    return std::nullopt;
-  const double w = track::edge_offset(t.rows[static_cast<std::size_t>(t.left)], -1.0) -
-                   track::edge_offset(t.rows[static_cast<std::size_t>(t.right)], 1.0);
+  const auto f = track::inner_faces(t);
+  if (!f) return std::nullopt;
+  const double w = f->left_face - f->right_face;
   return std::isfinite(w) ? std::optional<double>(w) : std::nullopt;
 }
 

@@ -95,14 +95,5 @@ TEST(EndOfRowShadow, TheFollowedRowsOwnCanopyBesideTheBoxIsNoOccluder) {
   EXPECT_FALSE(declared_after(without, pts, unknown, frames));
 }
 
-TEST(EndOfRowShadow, LinkAndWallAreValidated) {
-  EndOfRowConfig c;
-  c.shadow_link = -0.1;
-  EXPECT_THROW(c.validate(), std::invalid_argument);
-  c = EndOfRowConfig{};
-  c.shadow_wall = 1.5;
-  EXPECT_THROW(c.validate(), std::invalid_argument);
-}
-
 }  // namespace
 }  // namespace rownav::navigate

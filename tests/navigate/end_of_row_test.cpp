@@ -327,6 +327,12 @@ TEST(EndOfRow, ShadowSettingsAreValidated) {
   c = EndOfRowConfig{};
   c.blind_history = 0;
   EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = EndOfRowConfig{};
+  c.shadow_link = -0.1;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = EndOfRowConfig{};
+  c.shadow_wall = 1.5;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 
 }  // namespace

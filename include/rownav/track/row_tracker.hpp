@@ -85,6 +85,24 @@ struct RowTracking {
   std::optional<double> distance_to_target;
 };
 
+/// The followed pair's inner canopy edges at x = 0 (base frame, left +): the right row's left
+/// edge and the left row's right edge (edge_offset), with the rows themselves.
+struct InnerFaces {
+  const TrackedRow* right = nullptr;
+  const TrackedRow* left = nullptr;
+  double right_face = 0.0;  ///< [m]
+  double left_face = 0.0;   ///< [m]
+};
+
+/// InnerFaces of `t`; nullopt unless both followed rows are set (the values may be non-finite).
+inline std::optional<InnerFaces> inner_faces(const RowTracking& t) {
+  const int n = static_cast<int>(t.rows.size());
+  if (t.left < 0 || t.right < 0 || t.left >= n || t.right >= n) return std::nullopt;
+  const TrackedRow& r = t.rows[static_cast<std::size_t>(t.right)];
+  const TrackedRow& l = t.rows[static_cast<std::size_t>(t.left)];
+  return InnerFaces{&r, &l, edge_offset(r, 1.0), edge_offset(l, -1.0)};
+}
+
 /// A row tracker. update() never throws: stale frames, time going backwards, odometry jumps and
 /// no_rows observations are reflected in the status.
 class RowTracker {
