@@ -9,6 +9,7 @@
 
 #include "rownav/core/angle.hpp"
 #include "rownav/navigate/turn_path.hpp"
+#include "rownav/track/row_geometry.hpp"
 
 namespace rownav::navigate {
 
@@ -25,6 +26,8 @@ void ManoeuvreConfig::validate() const {
   core::check_positive(lookahead, "lookahead");
   core::check_range(anchor_gate, 0.05, 0.5, "anchor_gate");
   core::check_positive(pole_band, "pole_band");
+  core::check_range(spacing_poles, 2, 1000, "spacing_poles");
+  core::check_range(spacing_tolerance, 0.0, 1.0, "spacing_tolerance");
 }
 
 HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPlan& plan,
@@ -89,9 +92,10 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
     // One row end per anchor gate: a canopy seen from the headland gives end estimates spread
     // across its width (crowns, a vine's foliage); two rows are a spacing apart.
     const double merge = config_.anchor_gate * spacing_;
-    auto it = std::find_if(poles_.begin(), poles_.end(),
-                           [&](const Pole& p) { return std::abs(p.y - q.y()) < merge; });
-    if (it == poles_.end()) {
+    auto it = std::min_element(poles_.begin(), poles_.end(), [&](const Pole& a, const Pole& b) {
+      return std::abs(a.y - q.y()) < std::abs(b.y - q.y());
+    });
+    if (it == poles_.end() || std::abs(it->y - q.y()) >= merge) {
       poles_.push_back({q.y(), 1});
     } else {
       it->y = (it->y * it->n + q.y()) / (it->n + 1);
@@ -103,17 +107,36 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
   for (const auto& p : poles_)
     if (side_ * p.y > 0.0 && side_ * p.y < side_ * robot.y()) ++passed;
   rows_passed_ = std::max(rows_passed_, passed);
-  // The target corridor lies between the two row ends that flank the planned centre.
-  const double gate = config_.anchor_gate * spacing_;
-  std::optional<double> lo, hi;
-  for (const auto& p : poles_) {
-    if (p.n < 2) continue;
-    if (std::abs(p.y - (planned_y_ - spacing_ / 2.0)) < gate) lo = p.y;
-    if (std::abs(p.y - (planned_y_ + spacing_ / 2.0)) < gate) hi = p.y;
-  }
+  // The target corridor lies between the two row ends that flank its centre, `shift` row ends'
+  // spacings out: counted with the row ends' own spacing, an in-row spacing 15 % short would
+  // miss the far flank by half a gate for shift 1 and by more for each row skipped.
+  const double s = pole_spacing(), expected = side_ * shift_ * s, gate = config_.anchor_gate * s;
+  // Each flank is the row end nearest its expected place (a weed or a post inside the gate
+  // must not take a row's place because it was listed later).
+  const auto nearest = [&](double y) -> std::optional<double> {
+    std::optional<double> best;
+    for (const auto& p : poles_)
+      if (p.n >= 2 && std::abs(p.y - y) < gate &&
+          (!best || std::abs(p.y - y) < std::abs(*best - y)))
+        best = p.y;
+    return best;
+  };
+  const std::optional<double> lo = nearest(expected - s / 2.0), hi = nearest(expected + s / 2.0);
   // Only abeam of the target: its two flanking row ends are then on either side of the robot and
   // the bias of each end's nearest point towards the robot cancels in the midpoint.
-  if (lo && hi && std::abs(robot.y() - target_y_) < 0.5 * spacing_) target_y_ = (*lo + *hi) / 2.0;
+  if (lo && hi && std::abs(robot.y() - target_y_) < 0.5 * s) target_y_ = (*lo + *hi) / 2.0;
+}
+
+double HeadlandManoeuvre::pole_spacing() const {
+  std::vector<double> ys;
+  for (const auto& p : poles_)
+    if (p.n >= 2) ys.push_back(p.y);
+  if (static_cast<int>(ys.size()) < config_.spacing_poles) return spacing_;
+  // Differences of row ends on one side of the robot are free of the nearest-point bias; the one
+  // across the robot is not, the median leaves it out (track::robust_spacing).
+  const double s = track::robust_spacing(std::move(ys));
+  const double r = 1.0 + config_.spacing_tolerance;
+  return s > spacing_ / r && s < spacing_ * r ? s : spacing_;
 }
 
 core::Twist2 HeadlandManoeuvre::follow(const TurnPrimitive& p, const core::Pose2& T_turn_base) {

@@ -36,6 +36,14 @@ struct ManoeuvreConfig {
   double lookahead = 0.6;              ///< [m] pure-pursuit look-ahead on the odometry pose
   double anchor_gate = 0.3;  ///< [-] x spacing: a row end within this of its expected place counts
   double pole_band = 1.5;    ///< [m] row ends taken within this of the row-end line (turn x = 0)
+  /// [-] row ends (each seen in two frames or more) from which their own centre-to-centre spacing
+  /// replaces the in-row estimate in the re-anchoring gate: seen from the headland a row end
+  /// shows its canopy's full width, while the in-row spacing of an opaque canopy seen from
+  /// inside its corridor can be 15 % short (BENCHMARK.md, issue 10; rownav)
+  int spacing_poles = 3;
+  /// [-] the row ends' spacing is used only within this ratio of the in-row spacing (either way):
+  /// beyond it the row ends are clutter or rows of another block (rownav)
+  double spacing_tolerance = 0.3;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -45,6 +53,8 @@ struct ManoeuvreConfig {
     v("lookahead", s.lookahead);
     v("anchor_gate", s.anchor_gate);
     v("pole_band", s.pole_band);
+    v("spacing_poles", s.spacing_poles);
+    v("spacing_tolerance", s.spacing_tolerance);
   }
   void validate() const;
 };
@@ -77,6 +87,9 @@ class HeadlandManoeuvre {
   /// [m] target corridor centre in turn y (after re-anchoring).
   double target_y() const { return target_y_; }
   int rows_passed() const { return rows_passed_; }
+  /// [m] centre-to-centre spacing of the row ends seen so far (spacing_poles of them), else the
+  /// in-row spacing the turn was planned with.
+  double pole_spacing() const;
   const core::Pose2& T_odom_turn() const { return T_odom_turn_; }
   /// Planned path in odom (for reports).
   std::vector<Eigen::Vector2d> path_odom() const;
