@@ -28,6 +28,7 @@ void ManoeuvreConfig::validate() const {
   core::check_positive(pole_band, "pole_band");
   core::check_range(spacing_poles, 2, 1000, "spacing_poles");
   core::check_range(spacing_tolerance, 0.0, 1.0, "spacing_tolerance");
+  core::check_range(pole_share, 0.0, 1.0, "pole_share");
 }
 
 HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPlan& plan,
@@ -99,7 +100,7 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
       poles_.push_back({q.y(), 1});
     } else {
       it->y = (it->y * it->n + q.y()) / (it->n + 1);
-      ++it->n;
+      most_seen_ = std::max(most_seen_, ++it->n);
     }
   }
   // Rows passed abeam: the row ends between the exit corridor and the robot (003 sec. II-C).
@@ -116,7 +117,7 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
   const auto nearest = [&](double y) -> std::optional<double> {
     std::optional<double> best;
     for (const auto& p : poles_)
-      if (p.n >= 2 && std::abs(p.y - y) < gate &&
+      if (counted(p) && std::abs(p.y - y) < gate &&
           (!best || std::abs(p.y - y) < std::abs(*best - y)))
         best = p.y;
     return best;
@@ -127,10 +128,14 @@ void HeadlandManoeuvre::reanchor(const std::vector<Eigen::Vector2d>& ends_turn,
   if (lo && hi && std::abs(robot.y() - target_y_) < 0.5 * s) target_y_ = (*lo + *hi) / 2.0;
 }
 
+bool HeadlandManoeuvre::counted(const Pole& p) const {
+  return p.n >= 2 && p.n >= config_.pole_share * most_seen_;
+}
+
 double HeadlandManoeuvre::pole_spacing() const {
   std::vector<double> ys;
   for (const auto& p : poles_)
-    if (p.n >= 2) ys.push_back(p.y);
+    if (counted(p)) ys.push_back(p.y);
   if (static_cast<int>(ys.size()) < config_.spacing_poles) return spacing_;
   // Differences of row ends on one side of the robot are free of the nearest-point bias; the one
   // across the robot is not, the median leaves it out (track::robust_spacing).

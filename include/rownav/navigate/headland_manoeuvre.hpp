@@ -44,6 +44,10 @@ struct ManoeuvreConfig {
   /// [-] the row ends' spacing is used only within this ratio of the in-row spacing (either way):
   /// beyond it the row ends are clutter or rows of another block (rownav)
   double spacing_tolerance = 0.3;
+  /// [-] a row end counts (flanks, spacing) once seen in two frames and in this share of the
+  /// frames of the most-seen row end: a weed or a post glimpsed in a few frames is none
+  /// (zoo:1:70: one seen twice among row ends seen 30-60 times spoilt their spacing; rownav)
+  double pole_share = 0.1;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -55,6 +59,7 @@ struct ManoeuvreConfig {
     v("pole_band", s.pole_band);
     v("spacing_poles", s.spacing_poles);
     v("spacing_tolerance", s.spacing_tolerance);
+    v("pole_share", s.pole_share);
   }
   void validate() const;
 };
@@ -106,9 +111,12 @@ class HeadlandManoeuvre {
     double y = 0.0;  // turn frame
     int n = 0;       // frames merged
   };
+  /// A row end seen often enough to count (pole_share).
+  bool counted(const Pole& p) const;
   ManoeuvreConfig config_;
   TurnPlan plan_;
   std::vector<Pole> poles_;
+  int most_seen_ = 0;  // frames of the most-seen row end
   double exit_x_ = 0.0;
   core::Pose2 T_odom_turn_;
   int side_ = 1, shift_ = 1;
