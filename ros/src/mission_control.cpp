@@ -27,10 +27,13 @@ MissionControl::MissionControl(bool autostart)
     : phase_(autostart ? MissionPhase::running : MissionPhase::waiting) {}
 
 MissionAnswer MissionControl::start(navigate::NavState nav) {
-  if (phase_ == MissionPhase::stopped)
-    return {false, "mission stopped: restart the node for a new mission"};
-  if (mission_ended(nav))
-    return {false, "mission ended (" + name(nav) + "): restart the node for a new mission"};
+  // A new mission from where the robot stands: the operator has put it at the start of the
+  // plan's first corridor (issue 15: restart in place, no node restart).
+  if (phase_ == MissionPhase::stopped || mission_ended(nav)) {
+    const std::string was = phase_ == MissionPhase::stopped ? "stopped in " + name(nav) : name(nav);
+    phase_ = MissionPhase::running;
+    return {true, "new mission started (the last one " + was + ")", true};
+  }
   switch (phase_) {
     case MissionPhase::running:
       return {true, "already running (" + name(nav) + ")"};
@@ -65,7 +68,7 @@ MissionAnswer MissionControl::stop(navigate::NavState nav) {
   if (phase_ == MissionPhase::stopped) return {true, "already stopped"};
   phase_ = MissionPhase::stopped;
   return {true, "mission stopped in " + name(nav) +
-                    ": command zero for good (restart the node for a new mission)"};
+                    ": command zero (~start begins a new mission from here)"};
 }
 
 std::string MissionControl::state(navigate::NavState nav) const {

@@ -65,6 +65,12 @@ void RowNavCore::set_mount(const Eigen::Isometry3d& T_base_lidar) {
   last_odom_stamp_.reset();
 }
 
+MissionAnswer RowNavCore::start() {
+  MissionAnswer a = mission_.start(navigator().state());
+  if (a.new_mission) stack_->restart_mission();
+  return a;
+}
+
 const std::vector<Eigen::Vector2f>& RowNavCore::last_points() const {
   return stack_->pipeline().last_points();
 }

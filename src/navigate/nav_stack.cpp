@@ -47,6 +47,8 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
                    TurnSide first_turn)
     : config_(config),
       parts_(std::move(parts)),
+      order_(order),
+      first_turn_(first_turn),
       localizer_(config.localizer),
       external_(config.stack.odometry_history, config.stack.max_extrapolation),
       place_input_((config.validate(), config.place)),
@@ -54,8 +56,7 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
   const StackMode mode = config_.stack.mode;
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
-  core::check(mode != StackMode::navigate || parts_.controller != nullptr, "controller",
-              "missing");
+  core::check(mode != StackMode::navigate || parts_.controller != nullptr, "controller", "missing");
   // Centroids of neighbouring voxels of one surface lie within two edges (end of row's shadow
   // test, issue 11).
   if (config_.end_of_row.shadow_link <= 0.0)
@@ -72,6 +73,26 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
 }
 
 NavStack::~NavStack() = default;
+
+void NavStack::restart_mission() {
+  navigator_ = std::make_unique<Navigator>(config_.navigator, order_, first_turn_,
+                                           config_.end_of_row.box_x_min);
+  if (parts_.tracker) parts_.tracker->reset();
+  if (parts_.controller) parts_.controller->reset();
+  end_of_row_->reset();
+  if (place_) place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
+  cover_.reset();
+  // The watchdog's budget and plausibility windows belong to the mission that ended; the
+  // input health (fresh or stale samples) does not.
+  phase_ = -1;
+  phase_start_ = phase_distance_ = 0.0;
+  phase_last_T_.reset();
+  phase_effort_.reset();
+  motion_.clear();
+  commanded_sum_ = measured_sum_ = 0.0;
+  motion_last_T_.reset();
+  nav_cmd_ = sent_cmd_ = {};
+}
 
 bool NavStack::on_encoders(const core::WheelEncoderSample& s) {
   if (!accept(s.stamp, last_encoder_, stats_.encoders, stats_.dropped_encoders)) return false;
@@ -178,9 +199,8 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
   if (place_) estimate_place(frame, r, *pose);
   if (config_.stack.mode == StackMode::track) return r;
   const auto& p = *parts_.pipeline;
-  r.end_of_row =
-      end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking,
-                          p.T_base_lidar().translation().head<2>().cast<float>());
+  r.end_of_row = end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking,
+                                     p.T_base_lidar().translation().head<2>().cast<float>());
   return r;
 }
 
@@ -228,8 +248,8 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   const auto& cloud = parts_.pipeline->last_cloud_base();
   std::vector<Eigen::Vector2f> tall;
   if (!cloud.points.empty()) {
-    tall = obstacle_points(cloud, parts_.pipeline->last_ground(), obstacle_band(cloud),
-                           robot_top());
+    tall =
+        obstacle_points(cloud, parts_.pipeline->last_ground(), obstacle_band(cloud), robot_top());
     in.obstacle_points_base = std::span<const Eigen::Vector2f>(tall);
   } else if (!config_.stack.planar_obstacles) {
     in.obstacle_points_base = std::span<const Eigen::Vector2f>();  // drives over them

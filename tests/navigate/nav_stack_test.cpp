@@ -48,7 +48,8 @@ NavStack make_stack(StackMode mode = StackMode::navigate) {
   NavStackConfig c;
   c.stack.mode = mode;
   NavStackParts parts;
-  parts.pipeline = std::make_unique<detect::DetectionPipeline>(io::make_pipeline("parallel_lines", ""));
+  parts.pipeline =
+      std::make_unique<detect::DetectionPipeline>(io::make_pipeline("parallel_lines", ""));
   if (mode != StackMode::detect) parts.tracker = std::make_unique<track::RawCorridorTracker>();
   // Stanley as shipped: its speed comes down with the front obstacle distance (003 sec. II-B).
   if (mode == StackMode::navigate) parts.controller = io::make_controller("stanley", "");
@@ -67,7 +68,8 @@ std::vector<NavCommand> drive(NavStack& s, double v, bool encoders = true, doubl
       const auto ticks = static_cast<std::int64_t>(std::llround(v * t * ticks_per_m));
       s.on_encoders({t, ticks, ticks, 0.0});
     }
-    if (k % 4 == 0) s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k), obstacle_x), t - 0.04));
+    if (k % 4 == 0)
+      s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k), obstacle_x), t - 0.04));
     out.push_back(s.command(t));
   }
   return out;
@@ -170,16 +172,16 @@ TEST(NavStack, LateDuplicateAndNonFiniteSamplesAreDroppedAndCounted) {
   NavStack s = make_stack();
   drive(s, 0.5);
   const NavStackStats before = s.stats();
-  s.on_encoders({1.0, 0, 0, 0.0});                              // older than the newest
-  s.on_encoders({std::nan(""), 0, 0, 0.0});                     // not a time
+  s.on_encoders({1.0, 0, 0, 0.0});           // older than the newest
+  s.on_encoders({std::nan(""), 0, 0, 0.0});  // not a time
   core::ImuSample imu;
   imu.stamp = 2.0;
   s.on_imu(imu);
   imu.stamp = 1.9;
-  s.on_imu(imu);                                                // older than the newest
-  s.on_scan(scan_of(corridor_points(1), 1.0));                  // older than the last frame
-  s.on_scan(scan_of(corridor_points(1), 1.96));                 // the last frame again
-  const NavCommand late = s.command(1.5);                       // older than the last command
+  s.on_imu(imu);                                 // older than the newest
+  s.on_scan(scan_of(corridor_points(1), 1.0));   // older than the last frame
+  s.on_scan(scan_of(corridor_points(1), 1.96));  // the last frame again
+  const NavCommand late = s.command(1.5);        // older than the last command
   EXPECT_EQ(s.stats().dropped_encoders, before.dropped_encoders + 2);
   EXPECT_EQ(s.stats().dropped_imu, before.dropped_imu + 1);
   EXPECT_EQ(s.stats().imu, before.imu + 1);
@@ -220,7 +222,8 @@ TEST(NavStack, AMissingPartIsAConstructionError) {
   NavStackConfig bad;
   bad.stack.sweep_period = 0.0;
   NavStackParts p2;
-  p2.pipeline = std::make_unique<detect::DetectionPipeline>(io::make_pipeline("parallel_lines", ""));
+  p2.pipeline =
+      std::make_unique<detect::DetectionPipeline>(io::make_pipeline("parallel_lines", ""));
   p2.tracker = std::make_unique<track::RawCorridorTracker>();
   p2.controller = std::make_unique<test::ProportionalController>();
   EXPECT_THROW(NavStack(bad, std::move(p2)), std::invalid_argument);
@@ -250,7 +253,8 @@ std::vector<NavCommand> drive_from(NavStack& s, double t0, double seconds, bool 
       const auto ticks = static_cast<std::int64_t>(std::llround(travelled * ticks_per_m));
       s.on_encoders({t, ticks, ticks, 0.0});
     }
-    if (scans && k % 4 == 0) s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
+    if (scans && k % 4 == 0)
+      s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
     out.push_back(s.command(t));
   }
   return out;
@@ -270,7 +274,8 @@ TEST(NavStackWatchdog, ALidarBlackoutZeroesTheCommandWithinTheTimeoutAndMotionRe
   const auto blind = drive_from(s, 2.0, 1.5, false, true);
   const WatchdogConfig w;
   for (const auto& c : blind) {
-    if (c.stamp > 2.0 + w.lidar_timeout + 0.01) {  // the last scan (1.96 s, 25 Hz) was complete at 2.0 s
+    if (c.stamp >
+        2.0 + w.lidar_timeout + 0.01) {  // the last scan (1.96 s, 25 Hz) was complete at 2.0 s
       EXPECT_EQ(c.cmd.v, 0.0) << c.stamp;
       EXPECT_EQ(c.health, InputHealth::lidar_stale) << c.stamp;
     }
@@ -300,13 +305,42 @@ TEST(NavStackWatchdog, FrozenEncodersWhileDrivingAreASafeStop) {
   EXPECT_EQ(frozen.back().cmd.v, 0.0);
 }
 
+TEST(NavStack, ARestartedMissionDrivesAgainFromWhereTheRobotStoodInTheSameOdomFrame) {
+  NavStack s = make_stack();
+  drive_from(s, 0.0, 2.0, true, true);
+  const auto frozen = drive_from(s, 2.0, 3.0, true, true, true);
+  ASSERT_EQ(frozen.back().state, NavState::safe_stop);
+  const auto T_before = s.T_odom_base(5.0);
+  ASSERT_TRUE(T_before);
+  ASSERT_GT(T_before->x, 0.2);  // it had driven before the encoders froze
+  // Still stopped: time alone does not restart it.
+  EXPECT_EQ(drive_from(s, 5.0, 0.5, true, true).back().state, NavState::safe_stop);
+  s.restart_mission();
+  EXPECT_EQ(s.navigator().state(), NavState::in_row);
+  EXPECT_EQ(s.navigator().stop_reason(), StopReason::none);
+  const auto T_after = s.T_odom_base(5.5);
+  ASSERT_TRUE(T_after);
+  EXPECT_DOUBLE_EQ(T_after->x, T_before->x);  // localisation kept: no jump of the odom frame
+  EXPECT_DOUBLE_EQ(T_after->y, T_before->y);
+  const auto again = drive_from(s, 5.5, 2.0, true, true);
+  EXPECT_EQ(again.back().state, NavState::in_row);
+  EXPECT_EQ(again.back().corridor, 0);  // the plan's first corridor
+  EXPECT_EQ(again.back().served, 0);
+  EXPECT_GT(again.back().cmd.v, 0.1);
+  EXPECT_FALSE(has_event(again, NavEventKind::safe_stop));  // a fresh plausibility window
+  const auto T_end = s.T_odom_base(7.5);
+  ASSERT_TRUE(T_end);
+  EXPECT_GT(T_end->x, T_before->x + 0.2);  // driven on from there
+}
+
 TEST(NavStackWatchdog, AStateMayTakeItsBudgetButNotMore) {
   const WatchdogConfig w;
   const StateEffort exit{4.0, 5.0};  // 4 m at 0.8 m/s
   EXPECT_FALSE(budget_exceeded(exit, 5.0, 4.0, w));
   EXPECT_FALSE(budget_exceeded(exit, w.budget_factor * 5.0 + w.budget_time_margin, 4.0, w));
   EXPECT_TRUE(budget_exceeded(exit, w.budget_factor * 5.0 + w.budget_time_margin + 0.1, 4.0, w));
-  EXPECT_TRUE(budget_exceeded(exit, 5.0, w.budget_factor * 4.0 + w.budget_distance_margin + 0.1, w));
+  EXPECT_TRUE(
+      budget_exceeded(exit, 5.0, w.budget_factor * 4.0 + w.budget_distance_margin + 0.1, w));
 }
 
 }  // namespace

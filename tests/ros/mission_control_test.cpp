@@ -81,35 +81,50 @@ TEST(MissionControl, APauseInAManoeuvreWarnsOfItsTimeBudget) {
   EXPECT_FALSE(contains(m.pause(NavState::in_row).message, "budget"));
 }
 
-TEST(MissionControl, StopIsFinal) {
+TEST(MissionControl, AStopHoldsUntilStartBeginsANewMission) {
   rb::MissionControl m(true);
   const auto s = m.stop(NavState::turning);
   EXPECT_TRUE(s.success);
+  EXPECT_FALSE(s.new_mission);
   EXPECT_TRUE(contains(s.message, "mission stopped in turning")) << s.message;
   EXPECT_EQ(m.phase(), MissionPhase::stopped);
   expect_zero(m.gate(kDrive));
   EXPECT_EQ(m.state(NavState::turning), "stopped");
   EXPECT_EQ(m.state(NavState::safe_stop), "stopped");
-  const auto restart = m.start(NavState::turning);
-  EXPECT_FALSE(restart.success);
-  EXPECT_EQ(restart.message, "mission stopped: restart the node for a new mission");
   EXPECT_FALSE(m.pause(NavState::turning).success);
   EXPECT_TRUE(m.stop(NavState::turning).success);  // idempotent
   EXPECT_EQ(m.phase(), MissionPhase::stopped);
   expect_zero(m.gate(kDrive));
+  const auto restart = m.start(NavState::turning);
+  EXPECT_TRUE(restart.success);
+  EXPECT_TRUE(restart.new_mission);  // not a resume of the stopped turn
+  EXPECT_EQ(restart.message, "new mission started (the last one stopped in turning)");
+  EXPECT_EQ(m.phase(), MissionPhase::running);
+  EXPECT_EQ(m.gate(kDrive).v, kDrive.v);
 }
 
-TEST(MissionControl, AMissionTheNavigatorEndedCannotBeResumed) {
+TEST(MissionControl, AResumeOrAFirstStartIsNoNewMission) {
+  rb::MissionControl waiting(false);
+  EXPECT_FALSE(waiting.start(NavState::in_row).new_mission);
+  rb::MissionControl m(true);
+  EXPECT_FALSE(m.start(NavState::in_row).new_mission);  // already running
+  EXPECT_TRUE(m.pause(NavState::turning).success);
+  EXPECT_FALSE(m.start(NavState::turning).new_mission);
+}
+
+TEST(MissionControl, AMissionTheNavigatorEndedIsNotResumedButStartedAnew) {
   rb::MissionControl m(true);
   EXPECT_TRUE(m.pause(NavState::turning).success);
   // e.g. the stack's budget watchdog during a long pause in a turn
   EXPECT_EQ(m.state(NavState::safe_stop), "safe_stop");
   const auto a = m.start(NavState::safe_stop);
-  EXPECT_FALSE(a.success);
-  EXPECT_TRUE(contains(a.message, "mission ended (safe_stop)")) << a.message;
-  EXPECT_EQ(m.phase(), MissionPhase::paused);
-  expect_zero(m.gate(kDrive));
+  EXPECT_TRUE(a.success);
+  EXPECT_TRUE(a.new_mission);
+  EXPECT_EQ(a.message, "new mission started (the last one safe_stop)");
+  EXPECT_EQ(m.phase(), MissionPhase::running);
   rb::MissionControl done(true);
   EXPECT_EQ(done.state(NavState::done), "done");
-  EXPECT_FALSE(done.start(NavState::done).success);
+  const auto d = done.start(NavState::done);
+  EXPECT_TRUE(d.success);
+  EXPECT_TRUE(d.new_mission);
 }

@@ -29,9 +29,13 @@ using Clock = std::chrono::steady_clock;
 TEST_F(NodeAgainstAMaster, StartsWithCommandLineListsPublishesItsStateAndStopsCleanly) {
   ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
   const std::string log = (home_.path() / "node.log").string();
-  Background node(env_ + "exec '" ROWNAV_NODE_BINARY "' '_lidar_mount:=[0.3,0,0.8,0,0,0]' "
-                  "_corridor_count:=5 _robot:=" ROWNAV_SOURCE_DIR "/config/robots/skid_steer.yaml "
-                  "> '" + log + "' 2>&1");
+  Background node(env_ +
+                  "exec '" ROWNAV_NODE_BINARY
+                  "' '_lidar_mount:=[0.3,0,0.8,0,0,0]' "
+                  "_corridor_count:=5 _robot:=" ROWNAV_SOURCE_DIR
+                  "/config/robots/skid_steer.yaml "
+                  "> '" +
+                  log + "' 2>&1");
   const std::string state =
       shell(env_ + "timeout 15 rostopic echo -n 1 /rownav_node/state 2>/dev/null");
   EXPECT_NE(state.find("in_row"), std::string::npos) << state << rownav::test::read_file(log);
@@ -45,7 +49,7 @@ TEST_F(NodeAgainstAMaster, StartsWithCommandLineListsPublishesItsStateAndStopsCl
 TEST_F(NodeAgainstAMaster, ABadParameterIsOneLineOnTheTerminalAndExitStatus2) {
   ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
   const std::string out = shell(env_ + "timeout 15 '" ROWNAV_NODE_BINARY
-                                "' _corridor_count:=five 2>&1; echo \"exit=$?\"");
+                                       "' _corridor_count:=five 2>&1; echo \"exit=$?\"");
   EXPECT_NE(out.find("rownav_node: error: "), std::string::npos) << out;
   EXPECT_NE(out.find("corridor_count"), std::string::npos) << out;
   EXPECT_NE(out.find("exit=2"), std::string::npos) << out;
@@ -179,8 +183,10 @@ TEST_F(NodeAgainstAMaster, PauseStartStopServicesZeroTheCommandAndResume) {
   EXPECT_GT(zero_commands(listener, Clock::now() + kGrace, std::chrono::milliseconds(1000)), 5);
   EXPECT_EQ(listener.state(), "stopped");
   const std_srvs::Trigger again = call("start");
-  EXPECT_FALSE(again.response.success);
-  EXPECT_EQ(again.response.message, "mission stopped: restart the node for a new mission");
+  EXPECT_TRUE(again.response.success);
+  EXPECT_EQ(again.response.message, "new mission started (the last one stopped in in_row)");
+  EXPECT_TRUE(listener.wait_driving(0.1, std::chrono::seconds(3)));  // a new mission, in place
+  EXPECT_EQ(listener.state(), "in_row");
   spinner.stop();
   ros::shutdown();
   EXPECT_TRUE(node.running());

@@ -87,7 +87,7 @@ TEST(OdomBuffer, InterpolatesAndExtrapolates) {
 TEST(RowNavCore, TheWatchdogTickStopsTheRobotWhenMessagesStop) {
   const Scene scene(0.0, 0.0);
   rb::RowNavCore core(vineyard_setup());
-  EXPECT_EQ(core.tick(50.0).cmd.v, 0.0);  // before any frame: stand still
+  EXPECT_EQ(core.tick(50.0).cmd.v, 0.0);            // before any frame: stand still
   const rb::FrameResult r = drive(scene, core, 8);  // frames and odometry up to t = 100.75
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_GT(r.cmd.v, 0.0);
@@ -156,7 +156,7 @@ TEST(RowNavCore, HeldStillWhileTheStackCommandsMotionEndsInASafeStop) {
   EXPECT_EQ(r.stop_reason, rownav::navigate::StopReason::odometry_implausible);
 }
 
-TEST(RowNavCore, WaitsForStartAndAStopIsFinal) {
+TEST(RowNavCore, WaitsForStartAndAfterAStopStartBeginsANewMission) {
   const Scene scene(0.0, 0.0);
   rb::StackSetup setup = vineyard_setup();
   setup.node.autostart = false;
@@ -185,7 +185,39 @@ TEST(RowNavCore, WaitsForStartAndAStopIsFinal) {
   EXPECT_TRUE(r.held);
   expect_zero(r.cmd);
   expect_zero(core.tick(t + 0.01).cmd);
-  EXPECT_FALSE(core.start().success);
+  const auto T_stopped = core.stack().T_odom_base(t);
+  const rb::MissionAnswer again = core.start();
+  EXPECT_TRUE(again.success);
+  EXPECT_TRUE(again.new_mission);
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
+  EXPECT_EQ(core.state_name(r.state), "in_row");
+  EXPECT_GT(r.cmd.v, 0.05);
+  // The same odom frame: the robot's own odometry goes on (REP 105).
+  ASSERT_TRUE(T_stopped);
+  EXPECT_NEAR(core.stack().T_odom_base(t - 0.1)->x, T_stopped->x, 1e-9);
+}
+
+TEST(RowNavCore, AfterASafeStopStartBeginsANewMissionThatDrives) {
+  const Scene scene(0.0, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  Sweeps sweeps(scene);
+  core.set_mount(sweeps.mount());
+  rb::FrameResult r;
+  double t = 100.0;
+  for (int k = 0; k < 40 && r.state != rownav::navigate::NavState::safe_stop; ++k, t += 0.1)
+    r = step(core, sweeps, scene.pose, t);
+  ASSERT_EQ(r.state, rownav::navigate::NavState::safe_stop);  // held still while commanded
+  expect_zero(r.cmd);
+  const rb::MissionAnswer a = core.start();
+  EXPECT_TRUE(a.success);
+  EXPECT_EQ(a.message, "new mission started (the last one safe_stop)");
+  EXPECT_EQ(core.navigator().state(), rownav::navigate::NavState::in_row);
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
+  EXPECT_GT(r.cmd.v, 0.05);
 }
 
 TEST(RowNavCore, NavSatFixesReachTheStackRejectedOnesAsOutages) {

@@ -78,8 +78,8 @@ class GroundCoverEstimator {
   /// [m] lowest obstacle height: cover + margin, within [min_height, cap]; min_height when
   /// disabled or without cover.
   double obstacle_min_height(double min_height) const;
-  /// Forgets the history (NavStack does not call it: the cover is kept across corridors and
-  /// turns).
+  /// Forgets the history. NavStack keeps the cover across corridors and turns and forgets it
+  /// only on a new mission (NavStack::restart_mission: perhaps another field).
   void reset();
 
  private:

@@ -5,9 +5,9 @@
 /// NavStack owns the chain sensor samples -> localize (wheel odometry + IMU EKF, or an external
 /// odometry) -> gravity levelling -> detection pipeline -> tracker -> end of row -> navigator ->
 /// controller (dt, obstacle distance) -> velocity limits, and beside the chain, when
-/// PlaceConfig::enabled, the map stage (Emmi 2021: place, key locations, topological map). The simulator runner, the ROS node,
-/// `rownav track`, `rownav detect` and the test harnesses only convert their input and call it,
-/// the way kiss-icp's ROS wrapper only calls its pipeline class.
+/// PlaceConfig::enabled, the map stage (Emmi 2021: place, key locations, topological map). The
+/// simulator runner, the ROS node, `rownav track`, `rownav detect` and the test harnesses only
+/// convert their input and call it, the way kiss-icp's ROS wrapper only calls its pipeline class.
 ///
 /// Samples may come in any order: one older than the newest of its stream, a duplicate or a
 /// non-finite stamp is dropped and counted (stats()), never a throw.
@@ -38,15 +38,16 @@ namespace rownav::navigate {
 /// The replaceable algorithms, built by name by the adapters (io registries).
 struct NavStackParts {
   std::unique_ptr<detect::DetectionPipeline> pipeline;
-  std::unique_ptr<track::RowTracker> tracker;         ///< null in StackMode::detect
+  std::unique_ptr<track::RowTracker> tracker;           ///< null in StackMode::detect
   std::unique_ptr<control::PathController> controller;  ///< null unless StackMode::navigate
 };
 
 /// What one LiDAR frame gave.
 struct FrameReport {
-  double stamp = 0.0;                      ///< [s] frame (sweep start) stamp
-  core::RowObservation observation;        ///< detector output (base frame)
-  std::optional<track::RowTracking> tracking;  ///< nullopt: no odometry at the frame, or detect mode
+  double stamp = 0.0;                ///< [s] frame (sweep start) stamp
+  core::RowObservation observation;  ///< detector output (base frame)
+  /// nullopt: no odometry at the frame, or detect mode
+  std::optional<track::RowTracking> tracking;
   EndOfRowResult end_of_row;
   /// the map stage's estimate of this frame (nullopt: disabled, detect mode or no odometry)
   std::optional<map::PlaceEstimate> place;
@@ -65,11 +66,11 @@ struct NavCommand {
   StopReason stop_reason = StopReason::none;
   int corridor = -1;  ///< corridor of the plan being served / entered
   int served = 0;
-  std::vector<NavEvent> events;       ///< what happened in this call
-  std::optional<FrameReport> frame;   ///< the LiDAR frame processed in this call, if any
+  std::vector<NavEvent> events;      ///< what happened in this call
+  std::optional<FrameReport> frame;  ///< the LiDAR frame processed in this call, if any
   /// the map stage's validated place (Emmi 2021 Table 1; unknown when disabled)
   map::Place place = map::Place::unknown;
-  std::vector<PlaceKey> key_locations;  ///< key locations validated in this call (odom frame)
+  std::vector<PlaceKey> key_locations;   ///< key locations validated in this call (odom frame)
   InputHealth health = InputHealth::ok;  ///< not ok: the command is zero until inputs are fresh
   double lidar_age = 0.0;     ///< [s] since the newest LiDAR frame was complete (inf: none yet)
   double odometry_age = 0.0;  ///< [s] since the newest odometry sample (inf: none yet)
@@ -117,6 +118,13 @@ class NavStack {
   /// The command at `stamp`: processes the pending frame if there is one, else refreshes the
   /// odometry-closed manoeuvres between frames.
   NavCommand command(double stamp);
+  /// Begins a new mission from where the robot stands (an operator's start after a stop, or
+  /// after done / safe_stop): the navigator with the constructor's corridor order, the
+  /// tracker, controller, end-of-row detector, map stage, obstacle cover and the watchdog's
+  /// state budgets start afresh; the localisation, the sample streams and the sweep period
+  /// are kept, so the odom frame stays continuous (REP 105). The robot is to stand in the
+  /// plan's first corridor, as at construction. A frame not yet processed is kept.
+  void restart_mission();
 
   /// T_odom_base at `stamp` from the configured source (nullopt before any odometry).
   std::optional<core::Pose2> T_odom_base(double stamp) const;
@@ -150,17 +158,20 @@ class NavStack {
 
   NavStackConfig config_;
   NavStackParts parts_;
+  std::vector<int> order_;  // the constructor's plan, for restart_mission()
+  TurnSide first_turn_;
   std::unique_ptr<EndOfRowDetector> end_of_row_;
   std::unique_ptr<Navigator> navigator_;
   std::unique_ptr<map::PlaceEstimator> place_;  // null: map stage disabled
   localize::Localizer localizer_;
   localize::PoseHistory external_;
-  PlaceInput place_input_;  // after the members built before validation (config_.validate())
+  PlaceInput place_input_;      // after the members built before validation (config_.validate())
   GroundCoverEstimator cover_;  // validated config
   std::deque<core::ImuSample> imu_;
   std::vector<core::ImuSample> imu_buf_;  // imu_ made contiguous for levelling, reused per frame
   std::unique_ptr<Pending> pending_;
-  std::optional<double> last_frame_stamp_, last_command_stamp_, last_cloud_stamp_;  // last_cloud_stamp_: any frame
+  std::optional<double> last_frame_stamp_, last_command_stamp_,
+      last_cloud_stamp_;  // last_cloud_stamp_: any frame
   double sweep_period_ = 0.0;
   double last_encoder_ = -1e300, last_gnss_ = -1e300;
   core::Twist2 nav_cmd_, sent_cmd_;  // navigator's last command, the last limited command

@@ -19,29 +19,32 @@ enum class MissionPhase : std::uint8_t {
   waiting,  ///< not started yet (NodeConfig::autostart false): command zero until start
   running,  ///< the navigator's command is sent
   paused,   ///< command zero; start resumes where the mission was
-  stopped,  ///< command zero for good: the mission is over (restart the node for a new one)
+  stopped,  ///< command zero: the mission is over (start begins a new one from where it stands)
 };
 
 /// The answer to an operator's request (std_srvs/Trigger's success and message).
 struct MissionAnswer {
   bool success = false;
   std::string message;  ///< one line: what happened
+  /// the caller begins a new mission from where the robot stands (NavStack::restart_mission)
+  bool new_mission = false;
 };
 
-/// The operator's mission phase. The navigator's own end (done, safe_stop) is final too: start
-/// refuses to resume it. Pure state, no clock: the caller applies gate() to every command.
+/// The operator's mission phase. After a stop, or once the navigator ended the mission (done,
+/// safe_stop), start begins a new mission (MissionAnswer::new_mission) instead of resuming.
+/// Pure state, no clock: the caller applies gate() to every command.
 class MissionControl {
  public:
   /// `autostart`: running from the start (true) or waiting for start().
   explicit MissionControl(bool autostart);
 
-  /// Begins the mission (waiting) or resumes it (paused); refused once stopped or when the
-  /// navigator ended the mission (`nav` done / safe_stop).
+  /// Begins the mission (waiting), resumes it (paused), or begins a new one (new_mission) once
+  /// stopped or when the navigator ended it (`nav` done / safe_stop).
   MissionAnswer start(navigate::NavState nav);
   /// Command zero at once, the mission kept; refused once stopped. `nav` words the answer (a
   /// pause in an odometry-closed manoeuvre counts into its time budget).
   MissionAnswer pause(navigate::NavState nav);
-  /// Command zero for good. Always succeeds.
+  /// Command zero until a new mission is started. Always succeeds.
   MissionAnswer stop(navigate::NavState nav);
 
   MissionPhase phase() const { return phase_; }

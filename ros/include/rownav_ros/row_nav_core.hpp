@@ -99,8 +99,10 @@ class RowNavCore {
   /// rejected fix as an outage (valid = false). Returns the conversion (why it was rejected).
   NavSatConversion on_fix(const sensor_msgs::NavSatFix& msg);
 
-  /// Operator requests (MissionControl, with the navigator's current state).
-  MissionAnswer start() { return mission_.start(navigator().state()); }
+  /// Operator requests (MissionControl, with the navigator's current state). A start after a
+  /// stop or after the navigator ended the mission begins a new one where the robot stands
+  /// (NavStack::restart_mission: the odom frame continues).
+  MissionAnswer start();
   MissionAnswer pause() { return mission_.pause(navigator().state()); }
   MissionAnswer stop() { return mission_.stop(navigator().state()); }
   const MissionControl& mission() const { return mission_; }
