@@ -37,7 +37,9 @@ void SimScore::add(const sim::GroundTruth& g) {
   sum_lateral_ += std::abs(g.lateral_error), ++n_;
 }
 
-std::optional<double> SimScore::latency(double q) const { return io::percentile(latencies_, q); }
+std::optional<double> SimScore::latency(double q) const {
+  return io::percentile(latencies_, q);
+}
 
 std::string SimScore::json(double sim_time, const std::string& state, bool timed_out) const {
   std::ostringstream o;
@@ -97,8 +99,8 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   read_config(pnh_, "", config_);
   const auto& c = config_;
   field_ = std::make_unique<sim::Field>(io::load_field(c.field));
-  const auto robot = c.robot.empty() ? sim::RobotConfig{}
-                                     : io::load_config<sim::RobotConfig>(c.robot);
+  const auto robot =
+      c.robot.empty() ? sim::RobotConfig{} : io::load_config<sim::RobotConfig>(c.robot);
   const auto sensors = c.sensors.empty() ? sim::SimConfig{} : io::load_sim_config(c.sensors);
   const auto mission = c.mission.empty() ? navigate::MissionPlan{} : io::load_mission(c.mission);
   const sim::FieldTruth truth(*field_);
@@ -110,6 +112,8 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   ticks_per_rev_ = sensors.encoders.ticks_per_rev;
   joints_.left_joints = {c.left_wheel_joint};
   joints_.right_joints = {c.right_wheel_joint};
+  // A car-like base's driver publishes its steering joint beside the rear wheels.
+  if (robot.drive == core::DriveKind::ackermann) joints_.steering_joint = c.steering_joint;
   sink_ = std::make_unique<Sink>(*this);
   ros::param::set("/use_sim_time", true);  // the nodes started after this one follow /clock
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -165,7 +169,9 @@ void SimNode::on_tracking(const geometry_msgs::Vector3Stamped::ConstPtr& msg) {
   sent_.erase(sent_.begin(), std::next(it));
 }
 
-void SimNode::on_state(const std_msgs::String::ConstPtr& msg) { state_ = msg->data; }
+void SimNode::on_state(const std_msgs::String::ConstPtr& msg) {
+  state_ = msg->data;
+}
 
 void SimNode::publish_truth(const sim::GroundTruth& g) {
   truth_pub_.publish(to_odom_msg({g.stamp, g.T_world_base, g.twist, "world", config_.base_frame}));
@@ -209,7 +215,8 @@ int SimNode::run() {
       return 1;
     }
     if (config_.rate_factor > 0.0) {
-      const ros::WallTime due = wall0 + ros::WallDuration((sim_->time() - t0) / config_.rate_factor);
+      const ros::WallTime due =
+          wall0 + ros::WallDuration((sim_->time() - t0) / config_.rate_factor);
       const ros::WallTime now = ros::WallTime::now();
       if (due > now) (due - now).sleep();
     }

@@ -7,9 +7,9 @@
 /// follower, can be driven in rownav's fields and measured by rownav's truth.
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/Vector3Stamped.h>
-#include <sensor_msgs/JointState.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
 #include <std_msgs/String.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -60,6 +60,10 @@ struct SimNodeConfig {
   /// side, the track)
   std::string left_wheel_joint = "left_wheel_joint";
   std::string right_wheel_joint = "right_wheel_joint";
+  /// car-like robots (robot file `drive: ackermann`): the front steering joint published with
+  /// the wheels, its position the measured bicycle-model steering angle [rad] (rownav_node
+  /// `~wheels/steering_joint`); not published for other drives
+  std::string steering_joint = "front_steering_joint";
   /// the base's own odometry: nav_msgs/Odometry on `odom` and tf odom -> base_link. false when
   /// the follower computes its own (rownav_node ~odometry joint_states ~publish_tf), so that
   /// two nodes do not broadcast the same transform
@@ -82,6 +86,7 @@ struct SimNodeConfig {
     v("lidar_frame", s.lidar_frame);
     v("left_wheel_joint", s.left_wheel_joint);
     v("right_wheel_joint", s.right_wheel_joint);
+    v("steering_joint", s.steering_joint);
     v("publish_odometry", s.publish_odometry);
   }
   void validate() const {
@@ -91,6 +96,7 @@ struct SimNodeConfig {
     core::check_positive(time_limit, "time_limit");
     core::check(!left_wheel_joint.empty(), "left_wheel_joint", "must not be empty");
     core::check(!right_wheel_joint.empty(), "right_wheel_joint", "must not be empty");
+    core::check(!steering_joint.empty(), "steering_joint", "must not be empty");
   }
 };
 
@@ -153,14 +159,14 @@ class SimNode {
   /// the base's wheel odometry (encoders + IMU), as a robot's base driver publishes it
   std::optional<localize::Localizer> odometry_;
   ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_, joints_pub_;
-  int ticks_per_rev_ = 1;  ///< the simulated encoders' resolution (counts -> joint angle)
+  int ticks_per_rev_ = 1;    ///< the simulated encoders' resolution (counts -> joint angle)
   WheelJointConfig joints_;  ///< the wheel joints of `joint_states` (from the parameters)
   ros::Subscriber cmd_sub_, state_sub_, tracking_sub_;
   /// cmd_vel and the tracking output are taken on their own thread, when they arrive
   ros::CallbackQueue answers_;
   std::unique_ptr<ros::AsyncSpinner> answer_spinner_;
-  std::mutex mutex_;  ///< guards cmd_, sent_, score_'s latencies
-  std::map<std::uint64_t, ros::WallTime> sent_;  ///< sweep stamp [ns] -> wall time published
+  std::mutex mutex_;                                    ///< guards cmd_, sent_, score_'s latencies
+  std::map<std::uint64_t, ros::WallTime> sent_;         ///< sweep stamp [ns] -> wall time published
   static constexpr std::size_t kMaxPendingFrames = 50;  ///< sweeps kept waiting for an answer
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
