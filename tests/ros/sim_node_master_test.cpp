@@ -73,6 +73,22 @@ MasterRun run_against_master(const std::string& env, const std::filesystem::path
   return r;
 }
 
+/// A one-corridor run on the node's own odometry: done, no plant crushed, the skid-steer's
+/// bounds, and every sweep answered (without its own odometry the node would never have moved:
+/// the sim node published none).
+void expect_one_corridor_on_own_odometry(const MasterRun& m) {
+  ASSERT_NE(m.sim_code, -1) << "no end within 150 s\n" << m.sim_log;
+  EXPECT_EQ(m.sim_code, 0) << m.sim_log;
+  const std::string& ros = m.result;
+  SCOPED_TRACE(ros + "\n" + m.node_log);
+  EXPECT_NE(ros.find("\"state\": \"done\""), std::string::npos);
+  EXPECT_NE(ros.find("\"corridors\": [0]"), std::string::npos);
+  EXPECT_EQ(json_number(ros, "plants_crushed"), 0.0);
+  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_max"), 0.15);
+  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_mean"), 0.03);
+  EXPECT_GT(json_number(ros, "answered_frames"), 0.9 * 10.0 * json_number(ros, "sim_time"));
+}
+
 TEST_F(NodeAgainstAMaster, TheSimNodeDrivesRownavNodeThroughTwoCorridorsLikeRownavRun) {
   ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
   const auto dir = home_.path();
@@ -116,17 +132,7 @@ TEST_F(NodeAgainstAMaster, RownavNodeFollowsACorridorOnWheelJointStatesAndTheImu
   const MasterRun m =
       run_against_master(env_, home_.path(), kConfig + "/missions/one_corridor.yaml",
                          "_publish_odometry:=false", "_odometry:=joint_states");
-  ASSERT_NE(m.sim_code, -1) << "no end within 150 s\n" << m.sim_log;
-  EXPECT_EQ(m.sim_code, 0) << m.sim_log;
-  const std::string& ros = m.result;
-  SCOPED_TRACE(ros + "\n" + m.node_log);
-  EXPECT_NE(ros.find("\"state\": \"done\""), std::string::npos);
-  EXPECT_NE(ros.find("\"corridors\": [0]"), std::string::npos);
-  EXPECT_EQ(json_number(ros, "plants_crushed"), 0.0);
-  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_max"), 0.15);
-  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_mean"), 0.03);
-  // Without its own odometry the node would never have moved: the sim node published none.
-  EXPECT_GT(json_number(ros, "answered_frames"), 0.9 * 10.0 * json_number(ros, "sim_time"));
+  expect_one_corridor_on_own_odometry(m);
 }
 
 // A car-like robot's base publishes its rear wheels and its steering joint: the stack's bicycle
@@ -140,16 +146,7 @@ TEST_F(NodeAgainstAMaster, RownavNodeFollowsACorridorOnACarLikeRobotsWheelAndSte
       "_odometry:=joint_states _wheels/steering_joint:=front_steering_joint", "car_like.yaml",
       "/joint_states");
   EXPECT_NE(m.echoed.find("front_steering_joint"), std::string::npos) << m.echoed;
-  ASSERT_NE(m.sim_code, -1) << "no end within 150 s\n" << m.sim_log;
-  EXPECT_EQ(m.sim_code, 0) << m.sim_log;
-  const std::string& ros = m.result;
-  SCOPED_TRACE(ros + "\n" + m.node_log);
-  EXPECT_NE(ros.find("\"state\": \"done\""), std::string::npos);
-  EXPECT_NE(ros.find("\"corridors\": [0]"), std::string::npos);
-  EXPECT_EQ(json_number(ros, "plants_crushed"), 0.0);
-  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_max"), 0.15);
-  EXPECT_LT(json_number(ros, "in_corridor_lateral_error_mean"), 0.03);
-  EXPECT_GT(json_number(ros, "answered_frames"), 0.9 * 10.0 * json_number(ros, "sim_time"));
+  expect_one_corridor_on_own_odometry(m);
 }
 
 TEST(LaunchFiles, ResolveInTheBuiltPackage) {
