@@ -47,7 +47,7 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
                    TurnSide first_turn)
     : config_(config),
       parts_(std::move(parts)),
-      order_(order),
+      order_(std::move(order)),
       first_turn_(first_turn),
       localizer_(config.localizer),
       external_(config.stack.odometry_history, config.stack.max_extrapolation),
@@ -62,25 +62,29 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
   if (config_.end_of_row.shadow_link <= 0.0)
     config_.end_of_row.shadow_link = 2.0 * parts_.pipeline->preprocess_config().voxel.voxel_size;
   end_of_row_ = std::make_unique<EndOfRowDetector>(config_.end_of_row);
-  navigator_ = std::make_unique<Navigator>(config_.navigator, std::move(order), first_turn,
-                                           config_.end_of_row.box_x_min);
+  begin_mission();
   // The front rectangle is the robot's own (Bertoglio 2023 sec. II-B).
   config_.stack.front.robot_width = config_.robot.width;
   config_.stack.front.front_x = config_.robot.base_to_front;
   sweep_period_ = config_.stack.sweep_period;
-  if (config_.place.enabled)
-    place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
 }
 
 NavStack::~NavStack() = default;
 
-void NavStack::restart_mission() {
+void NavStack::begin_mission() {
+  // The constructor's plan, from where the robot stands: a fresh navigator and map stage.
   navigator_ = std::make_unique<Navigator>(config_.navigator, order_, first_turn_,
                                            config_.end_of_row.box_x_min);
+  place_.reset();
+  if (config_.place.enabled)
+    place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
+}
+
+void NavStack::restart_mission() {
+  begin_mission();
   if (parts_.tracker) parts_.tracker->reset();
   if (parts_.controller) parts_.controller->reset();
   end_of_row_->reset();
-  if (place_) place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
   cover_.reset();
   // The watchdog's budget and plausibility windows belong to the mission that ended; the
   // input health (fresh or stale samples) does not.

@@ -141,6 +141,7 @@ class NavStack {
 
  private:
   struct Pending;
+  void begin_mission();  // navigator and map stage for order_ / first_turn_
   FrameReport process_frame(Pending& frame, const std::optional<core::Pose2>& T);
   core::RowObservation detect_frame(Pending& frame, bool& levelled);
   void estimate_place(const Pending& frame, FrameReport& report, const core::Pose2& T);
