@@ -59,7 +59,9 @@ core::RowObservation BaselineDetector::detect(const DetectorInput& input) {
     if (static_cast<int>(side->size()) < config_.min_points) continue;
     if (const auto line = fit_y_of_x(*side)) obs.rows.push_back(make_row_line(*line, *side));
   }
-  finalize_observation(obs);
+  // As published: the two box lines form the corridor whatever their angle (no pairing check;
+  // 90 deg is every angle).
+  finalize_observation(obs, 0.0, CorridorPairConfig{.max_skew_deg = 90.0});
   return obs;
 }
 

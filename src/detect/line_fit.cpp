@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace rownav::detect {
 
@@ -65,17 +66,60 @@ double corridor_confidence(const core::RowObservation& obs) {
   return n == 0 ? 0.0 : c / 2.0;  // one side only: at most 0.5
 }
 
+// Angle between two row directions, folded to [0, pi/2].
+double skew(const core::RowLine& a, const core::RowLine& b) {
+  const double d = std::abs(a.line.direction.normalized().dot(b.line.direction.normalized()));
+  return std::acos(std::min(1.0, d));
+}
+
+// [m] how far along x the row's returns start from the robot (0 when they pass beside it).
+double start_distance(const core::RowLine& r) {
+  return r.x_min > 0.0 ? r.x_min : r.x_max < 0.0 ? -r.x_max : 0.0;
+}
+
+// Rows of obs parallel to row i within max_skew (i included).
+int companions(const core::RowObservation& obs, int i, double max_skew) {
+  int n = 0;
+  for (const auto& r : obs.rows) n += skew(r, obs.rows[std::size_t(i)]) <= max_skew;
+  return n;
+}
+
+// The nearest corridor rows must be parallel; otherwise the side fewer rows agree with (then the
+// one seen farther from the robot) takes its nearest row parallel to the other side, or none.
+void pair_parallel(core::RowObservation& obs, double lookahead, double max_skew) {
+  if (obs.left < 0 || obs.right < 0) return;
+  const auto& l = obs.rows[std::size_t(obs.left)];
+  const auto& r = obs.rows[std::size_t(obs.right)];
+  if (skew(l, r) <= max_skew) return;
+  const int nl = companions(obs, obs.left, max_skew), nr = companions(obs, obs.right, max_skew);
+  const bool keep_left = nl != nr ? nl > nr : start_distance(l) <= start_distance(r);
+  const int keep = keep_left ? obs.left : obs.right;
+  int& loser = keep_left ? obs.right : obs.left;
+  loser = -1;
+  const auto& k = obs.rows[std::size_t(keep)];
+  for (std::size_t i = 0; i < obs.rows.size(); ++i) {
+    const double y = offset_at(obs.rows[i], lookahead);
+    if ((keep_left ? y >= 0.0 : y < 0.0) || skew(obs.rows[i], k) > max_skew) continue;
+    const bool nearer =
+        loser < 0 || std::abs(y) < std::abs(offset_at(obs.rows[std::size_t(loser)], lookahead));
+    if (nearer) loser = static_cast<int>(i);
+  }
+}
+
 }  // namespace
 
-void finalize_observation(core::RowObservation& obs, double lookahead) {
-  std::sort(obs.rows.begin(), obs.rows.end(),
-            [&](const auto& a, const auto& b) { return offset_at(a, lookahead) < offset_at(b, lookahead); });
+void finalize_observation(core::RowObservation& obs, double lookahead,
+                          const CorridorPairConfig& pair) {
+  std::sort(obs.rows.begin(), obs.rows.end(), [&](const auto& a, const auto& b) {
+    return offset_at(a, lookahead) < offset_at(b, lookahead);
+  });
   obs.left = obs.right = -1;
   for (std::size_t i = 0; i < obs.rows.size(); ++i) {
     const double y = offset_at(obs.rows[i], lookahead);
     if (y < 0.0) obs.right = static_cast<int>(i);
     if (y >= 0.0 && obs.left < 0) obs.left = static_cast<int>(i);
   }
+  pair_parallel(obs, lookahead, pair.max_skew_deg * std::numbers::pi / 180.0);
   if (std::isnan(obs.heading)) {
     double w = 0.0, h = 0.0;
     for (const auto& r : obs.rows) {
@@ -95,7 +139,7 @@ void finalize_observation(core::RowObservation& obs, double lookahead) {
     c.width = (l.offset - r.offset) * std::cos(c.heading);
     obs.corridor = c;
   }
-  obs.status = obs.corridor ? core::DetectionStatus::ok
+  obs.status = obs.corridor       ? core::DetectionStatus::ok
                : obs.rows.empty() ? core::DetectionStatus::no_rows
                                   : core::DetectionStatus::degraded;
   if (obs.confidence <= 0.0) obs.confidence = corridor_confidence(obs);

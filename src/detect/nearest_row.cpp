@@ -27,13 +27,13 @@ struct Across {
 
 // The densest band of half width b among the returns `in` (sorted by u) lying across between lo
 // and hi; nullopt when none passes the support, length, direction and contrast tests.
-std::optional<NearBand> densest_band(const std::vector<Across>& in, double lo, double hi,
-                                     double b, double interior_width, const Frame& f,
+std::optional<NearBand> densest_band(const std::vector<Across>& in, double lo, double hi, double b,
+                                     double interior_width, const Frame& f,
                                      const NearestRowConfig& c, int inner_points) {
   const auto first = std::lower_bound(in.begin(), in.end(), lo,
                                       [](const Across& a, double v) { return a.u <= v; });
-  const auto last = std::lower_bound(first, in.end(), hi,
-                                     [](const Across& a, double v) { return a.u < v; });
+  const auto last =
+      std::lower_bound(first, in.end(), hi, [](const Across& a, double v) { return a.u < v; });
   const std::size_t i0 = std::size_t(first - in.begin()), i1 = std::size_t(last - in.begin());
   std::size_t best_i = i0, best_n = 0;
   for (std::size_t i = i0, j = i0; i < i1; ++i) {
@@ -52,8 +52,13 @@ std::optional<NearBand> densest_band(const std::vector<Across>& in, double lo, d
     band.points.push_back(in[k].p);
   }
   if (t_max - t_min < c.min_length) return std::nullopt;
+  // A row seen from the robot runs from where it comes into view to the range limit; a short
+  // piece far ahead is a local object (min_length_per_start).
+  const double start = t_min * t_max > 0.0 ? std::min(std::abs(t_min), std::abs(t_max)) : 0.0;
+  if (t_max - t_min < c.min_length_per_start * start) return std::nullopt;
   const auto line = fit_line_tls(band.points);
-  if (!line || std::abs(line->direction.dot(f.n)) > std::sin(c.max_angle_deg * std::numbers::pi / 180.0))
+  if (!line ||
+      std::abs(line->direction.dot(f.n)) > std::sin(c.max_angle_deg * std::numbers::pi / 180.0))
     return std::nullopt;
   // Contrast against the rest of the corridor between the reported rows, over the band's reach
   // along the rows: a skipped row stands alone in an empty corridor, while a line crossing it
@@ -80,12 +85,12 @@ void NearestRowConfig::validate() const {
   core::check_non_negative(min_length, "min_length");
   core::check_range(max_angle_deg, 0.5, 45.0, "max_angle_deg");
   core::check_non_negative(min_contrast, "min_contrast");
+  core::check_non_negative(min_length_per_start, "min_length_per_start");
 }
 
 std::array<std::optional<NearBand>, 2> find_nearer_rows(const core::RowObservation& obs,
                                                         std::span<const Eigen::Vector2f> points,
-                                                        double heading,
-                                                        const NearestRowConfig& c,
+                                                        double heading, const NearestRowConfig& c,
                                                         int inner_points) {
   std::array<std::optional<NearBand>, 2> out;
   if (!c.enabled || obs.left < 0 || obs.right < 0 || !std::isfinite(heading)) return out;
@@ -129,8 +134,10 @@ int step_in_nearest_rows(core::RowObservation& obs, std::span<const Eigen::Vecto
       for (const auto& p : band->points) mean += p.cast<double>();
       mean /= static_cast<double>(band->points.size());
       core::RowLine row = make_row_line(core::Line2(mean, d), band->points);
-      if (replace) obs.rows[std::size_t(idx[std::size_t(side)])] = row;
-      else obs.rows.push_back(row);
+      if (replace)
+        obs.rows[std::size_t(idx[std::size_t(side)])] = row;
+      else
+        obs.rows.push_back(row);
       ++stepped;
     }
     finalize_observation(obs, lookahead);

@@ -21,6 +21,7 @@ void PearlConfig::validate() const {
   core::check_positive(neighbours, "neighbours");
   core::check_positive(neighbour_radius, "neighbour_radius");
   core::check_non_negative(label_cost, "label_cost");
+  core::check_non_negative(planar_label_cost, "planar_label_cost");
   core::check_positive(initial_models, "initial_models");
   core::check_non_negative(new_models, "new_models");
   core::check_range(max_models, 1, 256, "max_models");
@@ -118,8 +119,9 @@ core::RowObservation make_observation(const PearlConfig& cfg, const Points& pts,
 }  // namespace
 
 PearlDetector::PearlDetector(const PearlConfig& config)
-    : config_(config), state_(std::make_unique<PearlState>()) {
+    : config_(config), planar_config_(config), state_(std::make_unique<PearlState>()) {
   config_.validate();
+  planar_config_.label_cost = config_.planar_label_cost;
 }
 
 PearlDetector::~PearlDetector() = default;
@@ -130,7 +132,7 @@ std::string_view PearlDetector::name() const {
 
 core::RowObservation PearlDetector::detect(const DetectorInput& input) {
   PearlState& st = *state_;
-  const PearlConfig& cfg = config_;
+  const PearlConfig& cfg = input.planar_scan ? planar_config_ : config_;
   st.pts.clear();
   for (const auto& p : input.points)
     if (std::isfinite(p.x()) && std::isfinite(p.y())) st.pts.push_back(p);

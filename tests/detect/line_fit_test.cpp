@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "rownav/detect/line_fit.hpp"
 
@@ -70,6 +73,79 @@ TEST(LineFit, OneSideIsDegradedAndNoneIsNoRows) {
   finalize_observation(empty);
   EXPECT_EQ(empty.status, core::DetectionStatus::no_rows);
   EXPECT_EQ(empty.confidence, 0.0);
+}
+
+// Parallel rows along `heading` (rad) at the given offsets across, plus a line crossing the
+// corridor at `cross_deg` to the rows whose nearest point lies `cross_offset` left of the robot.
+core::RowObservation rows_and_a_crossing_line(double heading, const std::vector<double>& offsets,
+                                             double cross_deg, double cross_offset,
+                                             std::uint64_t seed) {
+  core::RowObservation obs;
+  obs.heading = std::nan("");
+  for (const double b : offsets) {
+    const auto pts = noisy_line(std::tan(heading), b / std::cos(heading), 60, 0.02, seed++);
+    obs.rows.push_back(make_row_line(*fit_line_tls(pts), pts));
+  }
+  // The crossing line's points start 3 m ahead, as the scan plane meets the ground there.
+  const double a = heading + cross_deg * std::numbers::pi / 180.0;
+  std::vector<Eigen::Vector2f> pts;
+  for (int i = 0; i < 30; ++i) {
+    const double x = 3.0 + 0.1 * i;
+    pts.emplace_back(float(x), float(cross_offset + std::tan(a) * x));
+  }
+  auto cross = make_row_line(*fit_line_tls(pts), pts);
+  obs.rows.push_back(cross);
+  return obs;
+}
+
+TEST(LineFit, ALineCrossingTheCorridorIsNotACorridorRow) {
+  // Random corridors (seeded): robot yawed up to 10 deg, spacing 1.5-3 m, off-centre up to 0.3 m;
+  // the nearest line on the left crosses the rows at 30-60 deg. The corridor is the parallel
+  // pair around the robot.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> yaw(-0.17, 0.17), spacing(1.5, 3.0), off(-0.3, 0.3),
+      cross(30.0, 60.0);
+  for (int k = 0; k < 50; ++k) {
+    SCOPED_TRACE(k);
+    const double h = yaw(rng), s = spacing(rng), o = off(rng);
+    const double right = -0.5 * s + o, left = 0.5 * s + o;
+    auto obs = rows_and_a_crossing_line(h, {right - s, right, left, left + s}, cross(rng),
+                                        0.25 * left, 100 + 10 * std::uint64_t(k));
+    finalize_observation(obs);
+    ASSERT_TRUE(obs.corridor);
+    EXPECT_NEAR(obs.corridor->offset, o / std::cos(h), 0.05);
+    EXPECT_NEAR(obs.corridor->width, s, 0.05);
+    EXPECT_NEAR(obs.corridor->heading, h, 0.03);
+  }
+}
+
+TEST(LineFit, ACrossingLineWithNoParallelRowOnItsSideLeavesOneSide) {
+  auto obs = rows_and_a_crossing_line(0.05, {-2.7, -0.9}, 45.0, 0.3, 7);
+  finalize_observation(obs);
+  EXPECT_FALSE(obs.corridor);
+  EXPECT_EQ(obs.status, core::DetectionStatus::degraded);
+  ASSERT_GE(obs.right, 0);
+  EXPECT_NEAR(obs.rows[std::size_t(obs.right)].offset, -0.9, 0.05);
+  EXPECT_EQ(obs.left, -1);
+}
+
+TEST(LineFit, NinetyDegreesOfSkewPairsAnyTwoLinesAsPublishedBaselinesDo) {
+  auto obs = rows_and_a_crossing_line(0.05, {-0.9, 2.7}, 45.0, 0.3, 8);
+  finalize_observation(obs, 0.0, CorridorPairConfig{.max_skew_deg = 90.0});
+  ASSERT_TRUE(obs.corridor);
+  EXPECT_NEAR(obs.rows[std::size_t(obs.left)].offset, 0.3, 0.05);  // the crossing line
+}
+
+TEST(LineFit, RowsWithinTheSkewLimitStayPaired) {
+  // 12 deg apart (a short row's fit on a yawed robot): still one corridor, both sides kept.
+  core::RowObservation obs;
+  obs.heading = std::nan("");
+  for (const auto& [slope, b] : {std::pair{0.0, -0.9}, std::pair{std::tan(0.21), 0.9}}) {
+    const auto pts = noisy_line(slope, b, 40, 0.01, 9);
+    obs.rows.push_back(make_row_line(*fit_line_tls(pts), pts));
+  }
+  finalize_observation(obs);
+  EXPECT_TRUE(obs.corridor);
 }
 
 }  // namespace

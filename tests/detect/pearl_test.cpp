@@ -44,7 +44,7 @@ TEST(Pearl, NamesFollowTheVariant) {
   PearlConfig c;
   auto count = [&](std::string_view, auto&) { ++fields; };
   PearlConfig::fields(c, count);
-  EXPECT_EQ(fields, 26);  // + nearest_row (issue 11)
+  EXPECT_EQ(fields, 27);  // + nearest_row, planar_label_cost (issue 11)
   PearlVariant v{};
   EXPECT_TRUE(core::enum_from_name("opal", v));
   EXPECT_EQ(v, PearlVariant::opal);
@@ -147,6 +147,30 @@ TEST(Pearl, DegenerateInputsGiveNoRowsOrDegraded) {
   for (int i = 0; i < 150; ++i) open.emplace_back(4.0f + u(rng), u(rng));
   const auto obs = det.detect(input_of(open));
   EXPECT_NE(obs.status, core::DetectionStatus::ok) << obs.rows.size() << " rows in an open field";
+}
+
+// A planar scan gives each corridor row only 8-12 returns after the voxel grid (issue 11): at
+// the cloud label cost such a row's model is dropped, at planar_label_cost it is reported.
+TEST(Pearl, SparsePlanarRowsKeepTheirModels) {
+  int kept_planar = 0, kept_cloud = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.03);
+    std::uniform_real_distribution<double> x(-0.5, 7.5);
+    std::vector<Eigen::Vector2f> pts;
+    for (const double y : {-1.0, 1.0})
+      for (int i = 0; i < 9; ++i) pts.emplace_back(float(x(rng)), float(y + noise(rng)));
+    for (const bool planar : {true, false}) {
+      PearlDetector d(variant(PearlVariant::ruby, seed));
+      DetectorInput in = input_of(pts);
+      in.planar_scan = planar;
+      (planar ? kept_planar : kept_cloud) += d.detect(in).corridor.has_value();
+    }
+  }
+  std::printf("[sparse planar rows] corridor in %d / 20 (planar), %d / 20 (cloud label cost)\n",
+              kept_planar, kept_cloud);
+  EXPECT_GE(kept_planar, 19);
+  EXPECT_LT(kept_cloud, kept_planar);
 }
 
 TEST(Pearl, SameSeedSameResult) {

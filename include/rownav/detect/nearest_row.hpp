@@ -39,8 +39,8 @@ struct NearestRowConfig {
   /// reported row: a skipped row is at 1/2 of it; canopy faces and protruding shoots of the
   /// reported row itself are closer (thick canopy: 0.3 + 0.3 m at >= 1.5 m spacing, < 0.35 x 3 m)
   double min_gap_fraction = 0.35;
-  int min_points = 5;        ///< [-] returns in the band (the detectors' own minimum: 5-8)
-  double min_length = 1.0;   ///< [m] extent of the band along the rows (one vine, 1 m apart)
+  int min_points = 5;       ///< [-] returns in the band (the detectors' own minimum: 5-8)
+  double min_length = 1.0;  ///< [m] extent of the band along the rows (one vine, 1 m apart)
   /// [deg] the band's own line (total least squares) is this close to the rows' heading: the
   /// arc where the scan plane meets rising ground ahead crosses the corridor, a row does not
   double max_angle_deg = 10.0;
@@ -48,6 +48,12 @@ struct NearestRowConfig {
   /// the robot and the reported row: a row stands out of the empty corridor, scattered clutter
   /// (~1) does not
   double min_contrast = 3.0;
+  /// [-] a band that starts ahead of (or behind) the robot is at least this fraction of that
+  /// distance long: a row seen from the robot runs from where it comes into view to the range
+  /// limit (a skipped near row under a thin canopy: 5.6-6.4 m from 2.9-4.3 m ahead), while the
+  /// bands that are no row are short pieces far ahead (weeds, a post, the scan plane touching a
+  /// bump: 1-2 m from 5.9-8.8 m ahead; tests/detect/nearest_row_2d_test.cpp frames)
+  double min_length_per_start = 0.5;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -60,6 +66,7 @@ struct NearestRowConfig {
     v("min_length", s.min_length);
     v("max_angle_deg", s.max_angle_deg);
     v("min_contrast", s.min_contrast);
+    v("min_length_per_start", s.min_length_per_start);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

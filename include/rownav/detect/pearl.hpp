@@ -59,6 +59,13 @@ struct PearlConfig {
   /// each expansion a model is dropped when moving its points to their best other label raises
   /// the data cost by less than h (about 20 points of a 1 m row segment keep their model).
   double label_cost = 1.5;
+  /// [m] the label cost on one planar scan (DetectorInput::planar_scan, issue 11): a 2D scanner
+  /// gives a corridor row only 8-12 returns after the voxel grid, and at label_cost a model with
+  /// min_support points lost its label (no rows for > 0.5 s: perception_lost in 2 of 16 seeded
+  /// quick-bench runs); at 1.0 a model that min_support would report keeps it. Projected 3D
+  /// clouds keep label_cost: there the lower cost turned weeds into extra rows
+  /// (BENCHMARK.md issue 11, 2026-12-04).
+  double planar_label_cost = 1.0;
   /// [-] models sampled at initialisation (sec. 2.1.2 step 1, "number of initial models").
   int initial_models = 12;
   /// [-] models sampled from the outliers per iteration (sec. 2.1.2 step 5 / sec. 2.2.3).
@@ -108,6 +115,7 @@ struct PearlConfig {
     v("neighbours", s.neighbours);
     v("neighbour_radius", s.neighbour_radius);
     v("label_cost", s.label_cost);
+    v("planar_label_cost", s.planar_label_cost);
     v("initial_models", s.initial_models);
     v("new_models", s.new_models);
     v("max_models", s.max_models);
@@ -152,6 +160,7 @@ class PearlDetector : public RowDetector {
 
  private:
   PearlConfig config_;
+  PearlConfig planar_config_;  // config_ with planar_label_cost as its label cost
   std::unique_ptr<PearlState> state_;
   int last_iterations_ = 0;
   double last_energy_ = 0.0;
