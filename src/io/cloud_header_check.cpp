@@ -215,6 +215,10 @@ void add_ply_property(PlyHeader& h, const std::vector<std::string>& w, const std
   const bool int_count = !list || (w[2].find("float") == std::string::npos && w[2] != "double" &&
                                    ply_type_size(w[3]) > 0);
   if (size == 0 || !int_count) bad_ply(name, n, "unknown property type");
+  // A point cloud's vertex holds numbers, not lists: PCL's reader asserts on a vertex list
+  // property (the PLY fuzzer found it); faces carry the lists.
+  if (list && h.elements.back().name == "vertex")
+    bad_ply(name, n, "list property " + quote_for_message(w[4]) + " in element 'vertex'");
   h.elements.back().min_bytes += size;
   h.elements.back().values += 1;
 }

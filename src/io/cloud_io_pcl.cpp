@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -57,6 +58,23 @@ bool is_integer_type(std::uint8_t t) {
 }
 
 /// Per-point time [s] relative to the stamp; sets has_time and possibly the stamp.
+// A coordinate, intensity or time as float: beyond float's range (or not finite) it is NaN, and
+// the point is dropped with the other invalid ones (a double -> float cast out of range is
+// undefined behaviour; the PCD fuzzer found one).
+float to_float(double v) {
+  return std::isfinite(v) && std::abs(v) <= double(std::numeric_limits<float>::max())
+             ? static_cast<float>(v)
+             : std::numeric_limits<float>::quiet_NaN();
+}
+
+// A ring or column index: a whole number in [0, 65535], else the file is not a LiDAR sweep.
+std::uint16_t to_index(double v, const std::string& name, const char* field, std::size_t point) {
+  if (!(v >= 0.0 && v <= double(std::numeric_limits<std::uint16_t>::max())))
+    throw InputError(name, "point " + std::to_string(point),
+                     std::string(field) + " " + std::to_string(v) + " is not in 0..65535");
+  return static_cast<std::uint16_t>(v);
+}
+
 void map_time(const pcl::PCLPointCloud2& c, std::vector<double>& times, core::PointCloud& out) {
   const pcl::PCLPointField* t = find_field(c, "t");
   double scale = 1.0;
@@ -100,13 +118,13 @@ core::PointCloud convert(const pcl::PCLPointCloud2& c, const std::string& name) 
   for (std::size_t i = 0; i < n; ++i) {
     const auto* base = c.data.data() + (i / c.width) * c.row_step + (i % c.width) * c.point_step;
     auto& p = out.points[i];
-    p.x = static_cast<float>(field_value(base + fx->offset, fx->datatype));
-    p.y = static_cast<float>(field_value(base + fy->offset, fy->datatype));
-    p.z = static_cast<float>(field_value(base + fz->offset, fz->datatype));
-    if (fi) p.intensity = static_cast<float>(field_value(base + fi->offset, fi->datatype));
-    if (fr) p.ring = static_cast<std::uint16_t>(field_value(base + fr->offset, fr->datatype));
-    if (fc) p.column = static_cast<std::uint16_t>(field_value(base + fc->offset, fc->datatype));
-    if (!times.empty()) p.time = static_cast<float>(times[i]);
+    p.x = to_float(field_value(base + fx->offset, fx->datatype));
+    p.y = to_float(field_value(base + fy->offset, fy->datatype));
+    p.z = to_float(field_value(base + fz->offset, fz->datatype));
+    if (fi) p.intensity = to_float(field_value(base + fi->offset, fi->datatype));
+    if (fr) p.ring = to_index(field_value(base + fr->offset, fr->datatype), name, "ring", i);
+    if (fc) p.column = to_index(field_value(base + fc->offset, fc->datatype), name, "column", i);
+    if (!times.empty()) p.time = to_float(times[i]);
   }
   out.drop_invalid();
   return out;

@@ -237,6 +237,38 @@ TEST_F(CloudIoTest, DataThatPclWouldReadAsHeaderIsRefused) {
   EXPECT_EQ(read_cloud(write("d.pcd", head + std::string(24, '\0'))).size(), 2u);
 }
 
+// Found by the 600 s fuzz runs (issue 13, 2026-12-04).
+TEST_F(CloudIoTest, FuzzFoundValuesAndListsGiveOneLineErrorsOrDroppedPoints) {
+  // A ring far outside 0..65535 (UBSan: double -> uint16 cast) is refused with its point.
+  const std::string head = "FIELDS x y z ring\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 2\nPOINTS 2\n"
+                           "DATA ascii\n";
+  const std::string ring = error_of(write("r.pcd", head + "1 2 3 4\n1 2 3 13893600\n"));
+  EXPECT_NE(ring.find("r.pcd:point 1: ring 13893600"), std::string::npos) << ring;
+  EXPECT_NE(ring.find("is not in 0..65535"), std::string::npos) << ring;
+  EXPECT_NE(error_of(write("n.pcd", head + "1 2 3 -1\n1 2 3 4\n")).find("ring -1"),
+            std::string::npos);
+  // A double coordinate beyond float's range is no point (dropped, as NaN / Inf are).
+  const auto big = read_cloud(write("big.pcd",
+                                    "FIELDS x y z\nSIZE 8 8 8\nTYPE F F F\nWIDTH 2\nPOINTS 2\n"
+                                    "DATA ascii\n1e300 0 0\n1 2 3\n"));
+  ASSERT_EQ(big.size(), 1u);
+  EXPECT_FLOAT_EQ(big.points[0].x, 1.0f);
+  // A list property in the vertex element trips a PCL assertion: refused from the header.
+  const std::string list = error_of(
+      write("l.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\n"
+                     "property double y\nproperty list uchar int vertex_indices\nend_header\n"
+                     "1 2 3 7 1 0\n"));
+  EXPECT_NE(list.find("l.ply:line 6: not a valid PLY file (list property 'vertex_indices' in "
+                      "element 'vertex'"),
+            std::string::npos)
+      << list;
+}
+
+TEST(InputError, ControlCharactersFromAFileAreEscapedIntoOneLine) {
+  const InputError e("a.mcap", "byte 75", "channel '\n:\x1b[31m' names unknown schema 3");
+  EXPECT_STREQ(e.what(), "a.mcap:byte 75: channel '\\n:\\x1b[31m' names unknown schema 3");
+}
+
 TEST(PointsCsv, CornRowsDataset) {
   const auto clouds = read_points_csv(fs::path(ROWNAV_SHARED_DATA) / "corn_rows_2d/scans.csv");
   ASSERT_EQ(clouds.size(), 1630u);
