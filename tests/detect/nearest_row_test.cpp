@@ -22,6 +22,17 @@ void add_row(std::vector<Eigen::Vector2f>& pts, double y, double x0, double x1, 
   }
 }
 
+// Returns of the right row (-0.85), the far left row (+2.55), and a near-left band at +0.85
+// from x0 to x1 with n returns; seeded.
+std::vector<Eigen::Vector2f> scan_with_near_band(double x0, double x1, int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<Eigen::Vector2f> pts;
+  add_row(pts, -0.85, -1.0, 9.0, 30, rng);
+  add_row(pts, 2.55, -1.0, 9.0, 30, rng);
+  add_row(pts, 0.85, x0, x1, n, rng);
+  return pts;
+}
+
 // A detector's answer that skipped the near left row: right row at -0.85, "left" at +2.55
 // (the row one spacing of 1.7 m out); the true near row stands at +0.85.
 core::RowObservation skipped_left(const std::vector<Eigen::Vector2f>& pts) {
@@ -42,11 +53,7 @@ core::RowObservation skipped_left(const std::vector<Eigen::Vector2f>& pts) {
 TEST(NearestRow, ALongRowFirstSeenAheadIsSteppedInto) {
   // Under a thin canopy the near row's returns can start metres ahead (beams beside the robot
   // pass through its gaps): from 3 m to the 9 m range, it is the row that hides the far one.
-  std::mt19937_64 rng(1);
-  std::vector<Eigen::Vector2f> pts;
-  add_row(pts, -0.85, -1.0, 9.0, 30, rng);
-  add_row(pts, 2.55, -1.0, 9.0, 30, rng);
-  add_row(pts, 0.85, 3.0, 9.0, 10, rng);
+  const auto pts = scan_with_near_band(3.0, 9.0, 10, 1);
   auto obs = skipped_left(pts);
   ASSERT_NEAR(obs.rows[std::size_t(obs.left)].offset, 2.55, 0.05);
   EXPECT_EQ(step_in_nearest_rows(obs, pts, NearestRowConfig{}, false), 1);
@@ -58,11 +65,7 @@ TEST(NearestRow, ALongRowFirstSeenAheadIsSteppedInto) {
 TEST(NearestRow, AShortPieceFarAheadIsNoRow) {
   // Six returns over 1.5 m from 6 m ahead (a weed clump, the scan plane touching a bump) pass
   // the support, length and direction tests but start farther ahead than their length allows.
-  std::mt19937_64 rng(2);
-  std::vector<Eigen::Vector2f> pts;
-  add_row(pts, -0.85, -1.0, 9.0, 30, rng);
-  add_row(pts, 2.55, -1.0, 9.0, 30, rng);
-  add_row(pts, 0.85, 6.0, 7.5, 6, rng);
+  const auto pts = scan_with_near_band(6.0, 7.5, 6, 2);
   auto obs = skipped_left(pts);
   EXPECT_EQ(step_in_nearest_rows(obs, pts, NearestRowConfig{}, false), 0);
   EXPECT_NEAR(obs.rows[std::size_t(obs.left)].offset, 2.55, 0.05);
