@@ -57,7 +57,6 @@ bool is_integer_type(std::uint8_t t) {
   return t != pcl::PCLPointField::FLOAT32 && t != pcl::PCLPointField::FLOAT64;
 }
 
-/// Per-point time [s] relative to the stamp; sets has_time and possibly the stamp.
 // A coordinate, intensity or time as float: beyond float's range (or not finite) it is NaN, and
 // the point is dropped with the other invalid ones (a double -> float cast out of range is
 // undefined behaviour; the PCD fuzzer found one).
@@ -75,6 +74,7 @@ std::uint16_t to_index(double v, const std::string& name, const char* field, std
   return static_cast<std::uint16_t>(v);
 }
 
+/// Per-point time [s] relative to the stamp; sets has_time and possibly the stamp.
 void map_time(const pcl::PCLPointCloud2& c, std::vector<double>& times, core::PointCloud& out) {
   const pcl::PCLPointField* t = find_field(c, "t");
   double scale = 1.0;

@@ -142,6 +142,21 @@ TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
   EXPECT_GT(r.cmd.v, 0.05);
 }
 
+namespace {
+
+// Frames every 0.1 s from `t` with the robot held at the scene's pose, at most 40 of them, until
+// the stack's watchdog safe-stops it (a robot that does not move while commanded to); `t` ends
+// after the last frame sent.
+rb::FrameResult hold_still_until_safe_stop(rb::RowNavCore& core, Sweeps& sweeps, const Scene& scene,
+                                           double& t) {
+  rb::FrameResult r;
+  for (int k = 0; k < 40 && r.state != rownav::navigate::NavState::safe_stop; ++k, t += 0.1)
+    r = step(core, sweeps, scene.pose, t);
+  return r;
+}
+
+}  // namespace
+
 TEST(RowNavCore, HeldStillWhileTheStackCommandsMotionEndsInASafeStop) {
   // Why a pause holds frames back: the stack's own watchdog takes a robot that does not move
   // while commanded to for a broken odometry.
@@ -149,9 +164,8 @@ TEST(RowNavCore, HeldStillWhileTheStackCommandsMotionEndsInASafeStop) {
   rb::RowNavCore core(vineyard_setup());
   Sweeps sweeps(scene);
   core.set_mount(sweeps.mount());
-  rb::FrameResult r;
-  for (int k = 0; k < 40 && r.state != rownav::navigate::NavState::safe_stop; ++k)
-    r = step(core, sweeps, scene.pose, 100.0 + 0.1 * k);
+  double t = 100.0;
+  const rb::FrameResult r = hold_still_until_safe_stop(core, sweeps, scene, t);
   EXPECT_EQ(r.state, rownav::navigate::NavState::safe_stop);
   EXPECT_EQ(r.stop_reason, rownav::navigate::StopReason::odometry_implausible);
 }
@@ -204,10 +218,8 @@ TEST(RowNavCore, AfterASafeStopStartBeginsANewMissionThatDrives) {
   rb::RowNavCore core(vineyard_setup());
   Sweeps sweeps(scene);
   core.set_mount(sweeps.mount());
-  rb::FrameResult r;
   double t = 100.0;
-  for (int k = 0; k < 40 && r.state != rownav::navigate::NavState::safe_stop; ++k, t += 0.1)
-    r = step(core, sweeps, scene.pose, t);
+  rb::FrameResult r = hold_still_until_safe_stop(core, sweeps, scene, t);
   ASSERT_EQ(r.state, rownav::navigate::NavState::safe_stop);  // held still while commanded
   expect_zero(r.cmd);
   const rb::MissionAnswer a = core.start();
