@@ -41,9 +41,11 @@ MasterRun run_against_master(const std::string& env, const std::filesystem::path
                              const std::string& mission, const std::string& sim_args,
                              const std::string& node_args,
                              const std::string& robot_file = "skid_steer.yaml",
-                             const std::string& echo_topic = "") {
+                             const std::string& echo_topic = "",
+                             const std::string& row_spacing = "1.8") {
   std::ofstream(dir / "field.yaml") << "kind: vineyard\nname: ros_small\nseed: 3\nvineyard:\n"
-                                       "  rows: 4\n  row_length: 15.0\n  row_spacing: 1.8\n";
+                                       "  rows: 4\n  row_length: 15.0\n  row_spacing: "
+                                    << row_spacing << "\n";
   const std::string field = (dir / "field.yaml").string(), result = (dir / "result.json").string();
   const std::string robot = kConfig + "/robots/" + robot_file;
   const std::string sim_log = (dir / "sim.log").string(), node_log = (dir / "node.log").string();
@@ -58,15 +60,19 @@ MasterRun run_against_master(const std::string& env, const std::filesystem::path
   for (int i = 0;
        i < 100 && shell(env + "rostopic list 2>/dev/null").find("/clock") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  Background node(env + "exec '" ROWNAV_NODE_BINARY "' _robot:=" + robot +
-                  " _detect_config:=" + kConfig + "/detect/vineyard.yaml _mission:=" + mission +
-                  " _corridor_count:=3 " + node_args + " > '" + node_log + "' 2>&1");
+  // Line-buffered: a failure's trace shows the node's events (its safe stop's reason) even when
+  // the node has not flushed yet (CI run of stop 29: the log was empty).
+  Background node(
+      env + "ROSCONSOLE_STDOUT_LINE_BUFFERED=1 exec '" ROWNAV_NODE_BINARY "' _robot:=" + robot +
+      " _detect_config:=" + kConfig + "/detect/vineyard.yaml _mission:=" + mission +
+      " _corridor_count:=3 " + node_args + " > '" + node_log + "' 2>&1");
   MasterRun r;
   if (!echo_topic.empty())
     r.echoed = shell(env + "timeout 20 rostopic echo -n 1 " + echo_topic + " 2>/dev/null");
   for (int i = 0; i < 1500 && sim.running(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   if (!sim.running()) r.sim_code = sim.stop();
+  node.stop();  // flushes what it logged
   r.result = read_file(result);
   r.sim_log = read_file(sim_log);
   r.node_log = read_file(node_log);
@@ -136,15 +142,16 @@ TEST_F(NodeAgainstAMaster, RownavNodeFollowsACorridorOnWheelJointStatesAndTheImu
 }
 
 // A car-like robot's base publishes its rear wheels and its steering joint: the stack's bicycle
-// odometry takes the yaw rate from the steering angle (localize/wheel_odometry.hpp). Measured:
-// with the node not told the steering joint, the same run ended in a safe stop after 7.3 s
-// (reason not traced).
+// odometry takes the yaw rate from the steering angle (localize/wheel_odometry.hpp). The rows are
+// 2.4 m apart: the car is 1.2 m wide, and in the 1.8 m rows above its front rectangle (+0.1 m a
+// side) reaches the 0.5 m canopy. `rownav run` there slows to 0.37 m/s at x = 3.6 m on every
+// seed 1-4, and one CI run of stop 29 stopped at 7.3 s (the same place, in real time).
 TEST_F(NodeAgainstAMaster, RownavNodeFollowsACorridorOnACarLikeRobotsWheelAndSteeringJoints) {
   ASSERT_FALSE(shell(env_ + "rostopic list 2>/dev/null").empty()) << "no master";
   const MasterRun m = run_against_master(
       env_, home_.path(), kConfig + "/missions/one_corridor.yaml", "_publish_odometry:=false",
       "_odometry:=joint_states _wheels/steering_joint:=front_steering_joint", "car_like.yaml",
-      "/joint_states");
+      "/joint_states", "2.4");
   EXPECT_NE(m.echoed.find("front_steering_joint"), std::string::npos) << m.echoed;
   expect_one_corridor_on_own_odometry(m);
 }
