@@ -7,6 +7,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "rownav/core/angle.hpp"
 #include "rownav/detect/line_fit.hpp"
 
 namespace rownav::map {
@@ -78,6 +79,7 @@ void LabelledClustersConfig::validate() const {
   core::check_positive(cell_size, "cell_size");
   core::check_non_negative(keep_behind, "keep_behind");
   core::check_positive(max_range, "max_range");
+  core::check_range(keep_turn_deg, 0.0, 360.0, "keep_turn_deg");
   core::check(min_cluster_points >= 2, "min_cluster_points", "must be >= 2");
   core::check_range(merge_angle_deg, 0.0, 90.0, "merge_angle_deg");
   core::check_non_negative(merge_offset, "merge_offset");
@@ -98,7 +100,7 @@ int LabelledClusters::add(const std::vector<Eigen::Vector3f>& points_base,
     const Eigen::Vector2d p = T_local_base * points_base[i].head<2>().cast<double>();
     if (!p.allFinite()) continue;
     const Eigen::Vector2f pf = p.cast<float>();
-    cells_.try_emplace(cell_key(pf, config_.cell_size), pf);
+    cells_.try_emplace(cell_key(pf, config_.cell_size), Stored{pf, T_local_base.theta});
     ++stored;
   }
   return stored;
@@ -107,9 +109,11 @@ int LabelledClusters::add(const std::vector<Eigen::Vector3f>& points_base,
 void LabelledClusters::prune(const core::Pose2& T) {
   const Eigen::Vector2d r = T.translation();
   const Eigen::Vector2d h(std::cos(T.theta), std::sin(T.theta));
+  const double max_turn = config_.keep_turn_deg * std::numbers::pi / 180.0;
   for (auto it = cells_.begin(); it != cells_.end();) {
-    const Eigen::Vector2d d = it->second.cast<double>() - r;
-    const bool drop = d.dot(h) < -config_.keep_behind || d.norm() > config_.max_range;
+    const Eigen::Vector2d d = it->second.p.cast<double>() - r;
+    const bool drop = d.dot(h) < -config_.keep_behind || d.norm() > config_.max_range ||
+                      std::abs(core::angle_diff(T.theta, it->second.heading)) > max_turn;
     it = drop ? cells_.erase(it) : std::next(it);
   }
 }
@@ -117,7 +121,7 @@ void LabelledClusters::prune(const core::Pose2& T) {
 const std::vector<RowCluster>& LabelledClusters::update(const core::Pose2& T_local_base) {
   prune(T_local_base);
   points_.clear();
-  for (const auto& [key, p] : cells_) points_.push_back(p);
+  for (const auto& [key, stored] : cells_) points_.push_back(stored.p);
   // Deterministic order (unordered_map iteration is not): sort by x then y.
   std::sort(points_.begin(), points_.end(), [](const auto& a, const auto& b) {
     return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();

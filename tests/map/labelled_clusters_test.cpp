@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "map/map_scene.hpp"
 
@@ -56,6 +57,24 @@ TEST(LabelledClusters, PointsFarBehindAreForgotten) {
   EXPECT_EQ(c.stored_points(), 0u);
 }
 
+// Issue 12: row ends seen through a headland turn under odometry drift landed between the next
+// corridor's rows; what the robot saw before it turned keep_turn_deg is forgotten.
+TEST(LabelledClusters, PointsSeenBeforeTheRobotTurnedAreForgotten) {
+  SynthScene s;
+  s.rows = test::block(1, 1.0, 0.0, 3.0);
+  std::mt19937_64 rng(5);
+  LabelledClusters c;
+  const core::Pose2 T(1.5, 0.5, 0.0);
+  const auto f = test::scan(s, T, rng);
+  c.add(f.points, f.labels, T);
+  const double deg = std::numbers::pi / 180.0, keep = c.config().keep_turn_deg;
+  // Turned on the spot: within keep_turn_deg the rows stay, beyond it they are gone.
+  EXPECT_EQ(c.update(core::Pose2(1.5, 0.5, (keep - 5.0) * deg)).size(), 2u);
+  EXPECT_GT(c.stored_points(), 0u);
+  EXPECT_TRUE(c.update(core::Pose2(1.5, 0.5, -(keep + 5.0) * deg)).empty());
+  EXPECT_EQ(c.stored_points(), 0u);
+}
+
 TEST(LabelledClusters, InvalidConfigNamesTheField) {
   LabelledClustersConfig cfg;
   cfg.eps = 0.0;
@@ -65,6 +84,9 @@ TEST(LabelledClusters, InvalidConfigNamesTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("eps"), std::string::npos);
   }
+  LabelledClustersConfig turn;
+  turn.keep_turn_deg = -1.0;
+  EXPECT_THROW(turn.validate(), std::invalid_argument);
 }
 
 }  // namespace

@@ -24,10 +24,15 @@ struct LabelledClustersConfig {
   /// [m] stored points farther than this behind the robot are discarded (Emmi 2021: "laser
   /// points that are far behind the robot are also discarded to reduce the drift")
   double keep_behind = 3.0;
-  double max_range = 12.0;        ///< [m] points farther from the robot are not stored (rownav)
-  int min_cluster_points = 4;     ///< [points] smaller clusters give no row line (rownav)
-  double merge_angle_deg = 8.0;   ///< [deg] two cluster lines closer in angle may be one row
-  double merge_offset = 0.15;     ///< [m] ... if each centroid is this close to the other line
+  double max_range = 12.0;  ///< [m] points farther from the robot are not stored (rownav)
+  /// [deg] stored points are forgotten once the robot has turned this far since it saw them:
+  /// odometry drifts most in rotation, and the row ends seen through a headland turn, stored
+  /// in F_l, landed between the next corridor's rows (issue 12, zoo:1:10: the entry read as an
+  /// alley; rownav, in the spirit of Emmi 2021's "points far behind are discarded")
+  double keep_turn_deg = 45.0;
+  int min_cluster_points = 4;    ///< [points] smaller clusters give no row line (rownav)
+  double merge_angle_deg = 8.0;  ///< [deg] two cluster lines closer in angle may be one row
+  double merge_offset = 0.15;    ///< [m] ... if each centroid is this close to the other line
   /// [m] ... and the gap between them along the line is at most this (Emmi 2021: "gaps can be
   /// found", a cluster is "a single crop row, or part of a row")
   double merge_gap = 2.5;
@@ -42,6 +47,7 @@ struct LabelledClustersConfig {
     v("cell_size", s.cell_size);
     v("keep_behind", s.keep_behind);
     v("max_range", s.max_range);
+    v("keep_turn_deg", s.keep_turn_deg);
     v("min_cluster_points", s.min_cluster_points);
     v("merge_angle_deg", s.merge_angle_deg);
     v("merge_offset", s.merge_offset);
@@ -53,12 +59,12 @@ struct LabelledClustersConfig {
 
 /// One crop row (or part of one) in F_l.
 struct RowCluster {
-  core::Line2 line;  ///< total-least-squares line, F_l, oriented towards +x of F_l
+  core::Line2 line;      ///< total-least-squares line, F_l, oriented towards +x of F_l
   double arc_min = 0.0;  ///< [m] extent of the support along `line` from line.point
   double arc_max = 0.0;  ///< [m]
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();  ///< [m] F_l
-  int points = 0;        ///< support points
-  int merged = 1;        ///< DBSCAN clusters joined into this row
+  int points = 0;                                      ///< support points
+  int merged = 1;                                      ///< DBSCAN clusters joined into this row
 };
 
 /// Accumulates crop points in F_l and extracts the rows. Stateful; never throws after
@@ -70,7 +76,8 @@ class LabelledClusters {
   /// and NaN / Inf points are dropped. Returns the number of points stored.
   int add(const std::vector<Eigen::Vector3f>& points_base, const std::vector<PointLabel>& labels,
           const core::Pose2& T_local_base);
-  /// Forgets the points behind / too far from the robot, clusters the rest and returns the rows.
+  /// Forgets the points behind / too far from the robot (or seen before it turned), clusters the
+  /// rest and returns the rows.
   const std::vector<RowCluster>& update(const core::Pose2& T_local_base);
   /// Flushes every stored point (new local frame, Emmi 2021 sec. "The field model").
   void reset();
@@ -83,7 +90,12 @@ class LabelledClusters {
   void merge_rows(std::vector<std::vector<int>>& members);
 
   LabelledClustersConfig config_;
-  std::unordered_map<std::int64_t, Eigen::Vector2f> cells_;
+  /// One stored point per cell, with the robot heading [rad] when it was stored (keep_turn_deg).
+  struct Stored {
+    Eigen::Vector2f p;
+    double heading = 0.0;
+  };
+  std::unordered_map<std::int64_t, Stored> cells_;
   std::vector<Eigen::Vector2f> points_;
   std::vector<RowCluster> rows_;
   detect::Dbscan dbscan_;
