@@ -78,7 +78,8 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
   }
   for (const auto& p : run.row_ends_world) canvas.dot(p, 4.0, Color::hex("#d62728"));
   for (const auto& c : run.crushes)  // a ring round each crushed plant, at least 0.15 m
-    canvas.circle(c.position, std::max(c.radius, kCrushRingMin), Style{Color::hex("#000000"), {}, 2.0});
+    canvas.circle(c.position, std::max(c.radius, kCrushRingMin),
+                  Style{Color::hex("#000000"), {}, 2.0});
   for (const auto& k : run.key_locations) canvas.dot(k.world, 3.0, key_colour);
 }
 
@@ -151,12 +152,24 @@ std::string html(const RunResult& run, const json& summary, const std::string& t
 std::string trajectory_csv(const RunResult& run) {
   std::ostringstream c;
   c.precision(9);
-  c << "stamp,x,y,theta,state,lateral_error,v,omega,corridor\n";
-  for (const auto& s : run.samples)
+  // With the map stage on: the place it had validated by then (its last frame at or before the
+  // sample) and the true one, so that a user can see where it lagged or erred (issue 12).
+  const bool placed = !run.places.empty();
+  c << "stamp,x,y,theta,state,lateral_error,v,omega,corridor" << (placed ? ",place,true_place" : "")
+    << "\n";
+  auto place = run.places.begin();
+  for (const auto& s : run.samples) {
     c << s.stamp << "," << s.T_world_base.x << "," << s.T_world_base.y << ","
       << s.T_world_base.theta << "," << core::enum_name(s.state) << ","
       << (s.place == sim::Place::lane ? s.lateral_error : NAN) << "," << s.twist.v << ","
-      << s.twist.omega << "," << s.corridor << "\n";
+      << s.twist.omega << "," << s.corridor;
+    if (placed) {
+      while (std::next(place) != run.places.end() && std::next(place)->stamp <= s.stamp) ++place;
+      c << "," << (place->stamp <= s.stamp ? core::enum_name(place->estimated) : "unknown") << ","
+        << core::enum_name(s.place);
+    }
+    c << "\n";
+  }
   return c.str();
 }
 
@@ -221,8 +234,11 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   j["key_location_error_max"] = num(s.place.key_error_max);
   j["key_locations"] = json::array();
   for (const auto& k : s.place.keys)
-    j["key_locations"].push_back({{"from", k.from}, {"to", k.to}, {"x", k.world.x()},
-                                  {"y", k.world.y()}, {"error", k.error}});
+    j["key_locations"].push_back({{"from", k.from},
+                                  {"to", k.to},
+                                  {"x", k.world.x()},
+                                  {"y", k.world.y()},
+                                  {"error", k.error}});
   return j.dump(2);
 }
 
