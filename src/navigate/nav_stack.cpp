@@ -248,6 +248,7 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   in.tracking = *report.tracking;
   in.end_of_row = report.end_of_row;
   in.points_base = parts_.pipeline->last_points();
+  if (report.place) in.place = report.place->place;
   // A 3D sweep: obstacles by height above the ground, not every point of the detection band.
   const auto& cloud = parts_.pipeline->last_cloud_base();
   std::vector<Eigen::Vector2f> tall;

@@ -32,6 +32,7 @@ void NavigatorConfig::validate() const {
   core::check_positive(heading_gain, "heading_gain");
   core::validate_nested(turn, "turn");
   core::validate_nested(row_ends, "row_ends");
+  core::validate_nested(place_gate, "place_gate");
 }
 
 Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
@@ -69,6 +70,7 @@ NavOutput Navigator::step(const NavInput& in) {
   NavOutput out;
   robot_ = in.robot;
   last_stamp_ = in.stamp;
+  place_ = in.place;
   if (last_seen_ < 0.0) last_seen_ = in.stamp;
   // Outside a row too (issue 13, a person walking in): the person's shadow on the rows ahead
   // looked like the row end, and `exiting` then drove into it by odometry.
@@ -186,10 +188,18 @@ core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& 
 void Navigator::exiting(const core::Pose2& T, NavOutput& out, double stamp) {
   // 003 sec. II-B: leave the row by a fixed distance measured by odometry.
   const core::Line2& centre = *ends_.centre();
-  if (centre.arc(T.translation()) < *ends_.end_arc() + exit_distance_) {
+  const double past = centre.arc(T.translation()) - (*ends_.end_arc() + exit_distance_);
+  const GateVerdict gate =
+      past < 0.0 ? GateVerdict::wait : exit_verdict(place_, past, config_.place_gate);
+  if (gate == GateVerdict::wait) {
     out.cmd = follow_line(centre, T, config_.row_speed);
     return;
   }
+  if (gate == GateVerdict::contradict)
+    return stop(StopReason::place_contradicts_plan, out, stamp,
+                "left the row end by " + fmt(past + exit_distance_) +
+                    " m but the map still places the robot in a lane (no exit validated: a gap "
+                    "in the rows?)");
   ++served_;
   if (ends_.left_end()) row_ends_.push_back(*ends_.left_end());
   if (ends_.right_end()) row_ends_.push_back(*ends_.right_end());

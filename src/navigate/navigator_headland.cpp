@@ -87,6 +87,19 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
     if (diff > config_.entry_gate * spacing_)
       return stop(StopReason::place_contradicts_plan, out, stamp,
                   "corridor seen " + fmt(diff) + " m from the planned one");
+    // Issue 12: the map must call it a lane too (headland: not validated yet, drive on).
+    const GateVerdict gate = entry_verdict(place_, config_.place_gate);
+    if (gate == GateVerdict::contradict)
+      return stop(StopReason::place_contradicts_plan, out, stamp,
+                  "the map calls the corridor seen '" + std::string(core::enum_name(*place_)) +
+                      "', not a lane");
+    if (gate == GateVerdict::wait) {
+      if (depth > config_.entry_max_depth)
+        stop(StopReason::place_contradicts_plan, out, stamp,
+             "entered " + fmt(depth) + " m but the map still places the robot in the " +
+                 std::string(core::enum_name(*place_)));
+      return;
+    }
     ++leg_;
     state_ = NavState::in_row;
     at_rows_ = true;  // entered past entry_check_depth: between the rows

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "rownav/navigate/navigator.hpp"
@@ -50,14 +52,20 @@ NavInput perceive(const core::Pose2& T, double t, int wrong, bool blind) {
 struct Drive {
   std::vector<NavState> states;  // each state once, in the order entered
   std::vector<NavEventKind> events;
+  std::string stop_message;  // the safe_stop event's text
   NavOutput last;
+  core::Pose2 T;  // where the robot ended
   bool reset_on_turn = false;
 };
 
+/// The map stage's validated place at a pose (NavInput::place); empty: the stage is off.
+using PlaceMap = std::function<std::optional<map::Place>(const core::Pose2&)>;
+
 /// 10 Hz frames, 100 Hz control, for up to 120 s; `wrong` / `blind_entry` alter what is seen
-/// while entering.
-Drive drive(int wrong_entry = 0, bool blind_entry = false) {
-  Navigator nav(NavigatorConfig{}, {0, 1}, TurnSide::left);
+/// while entering; `place` is the map stage's answer.
+Drive drive(int wrong_entry = 0, bool blind_entry = false, const PlaceMap& place = {},
+            const NavigatorConfig& config = {}) {
+  Navigator nav(config, {0, 1}, TurnSide::left);
   core::Pose2 T(0.0, 0.0, 0.0);
   core::Twist2 cmd;
   Drive run;
@@ -66,7 +74,9 @@ Drive drive(int wrong_entry = 0, bool blind_entry = false) {
     const bool entering = nav.state() == NavState::entering;
     NavOutput out;
     if (i % 10 == 0) {
-      out = nav.step(perceive(T, t, entering ? wrong_entry : 0, entering && blind_entry));
+      NavInput in = perceive(T, t, entering ? wrong_entry : 0, entering && blind_entry);
+      if (place) in.place = place(T);
+      out = nav.step(in);
       if (out.control)  // the stack's controller: steer onto the corridor centre
         out.cmd = {out.control->speed_ref, 0.0,
                    -1.5 * out.control->lateral_error - 1.5 * out.control->heading_error};
@@ -77,11 +87,27 @@ Drive drive(int wrong_entry = 0, bool blind_entry = false) {
     cmd = out.cmd;
     T = T * core::Pose2(cmd.v * kDt, 0.0, cmd.omega * kDt);
     if (run.states.empty() || run.states.back() != out.state) run.states.push_back(out.state);
-    for (const auto& e : out.events) run.events.push_back(e.kind);
+    for (const auto& e : out.events) {
+      run.events.push_back(e.kind);
+      if (e.kind == NavEventKind::safe_stop) run.stop_message = e.text;
+    }
     run.last = out;
+    run.T = T;
     if (out.state == NavState::done || out.state == NavState::safe_stop) break;
   }
   return run;
+}
+
+/// A map that validates the lane `entry_lag` metres into it and the headland `exit_lag` metres
+/// past its end, both ways along the rows (x from 0 to kRowsEnd); `in_lane` replaces the lane.
+PlaceMap lagging_map(double entry_lag, double exit_lag = 0.3,
+                     map::Place in_lane = map::Place::lane) {
+  return [=](const core::Pose2& T) {
+    const bool forward = std::cos(T.theta) > 0.0;
+    const bool lane = forward ? T.x > entry_lag && T.x < kRowsEnd + exit_lag
+                              : T.x > -exit_lag && T.x < kRowsEnd - entry_lag;
+    return lane ? in_lane : map::Place::headland;
+  };
 }
 
 bool contains_in_order(const std::vector<NavState>& seq, const std::vector<NavState>& want) {
@@ -96,16 +122,15 @@ TEST(NavigatorStates, ServesTwoCorridorsThroughEveryStateOfAnInPlaceTurn) {
   EXPECT_EQ(r.last.state, NavState::done);
   EXPECT_EQ(r.last.stop_reason, StopReason::done);
   EXPECT_EQ(r.last.served, 2);
-  EXPECT_TRUE(contains_in_order(
-      r.states, {NavState::in_row, NavState::exiting, NavState::turning, NavState::headland,
-                 NavState::turning, NavState::entering, NavState::in_row, NavState::exiting,
-                 NavState::done}));
+  EXPECT_TRUE(
+      contains_in_order(r.states, {NavState::in_row, NavState::exiting, NavState::turning,
+                                   NavState::headland, NavState::turning, NavState::entering,
+                                   NavState::in_row, NavState::exiting, NavState::done}));
   EXPECT_TRUE(r.reset_on_turn);  // the stack is asked to reset its tracker on the turn
-  for (NavEventKind k : {NavEventKind::row_end, NavEventKind::exit_done, NavEventKind::turn_started,
-                         NavEventKind::turn_finished, NavEventKind::entered_corridor,
-                         NavEventKind::mission_done})
-    EXPECT_NE(std::find(r.events.begin(), r.events.end(), k), r.events.end())
-        << core::enum_name(k);
+  for (NavEventKind k :
+       {NavEventKind::row_end, NavEventKind::exit_done, NavEventKind::turn_started,
+        NavEventKind::turn_finished, NavEventKind::entered_corridor, NavEventKind::mission_done})
+    EXPECT_NE(std::find(r.events.begin(), r.events.end(), k), r.events.end()) << core::enum_name(k);
 }
 
 TEST(NavigatorStates, EnteringTheWrongCorridorIsASafeStopThatSaysSo) {
@@ -157,6 +182,67 @@ TEST(NavigatorStates, AnObstacleThatHoldsTheRobotInARowEndsInASafeStopAfterTheTi
     }
     EXPECT_EQ(o.state, NavState::in_row) << moving;
   }
+}
+
+// Issue 12: the map stage's place gates the exit and the entry (navigate/place_gate.hpp).
+NavigatorConfig gated() {
+  NavigatorConfig c;
+  c.place_gate.enabled = true;
+  return c;
+}
+
+TEST(NavigatorPlaceGate, AMapThatAgreesLateLetsTheMissionThroughAsWithoutIt) {
+  const Drive plain = drive();
+  // 2.5 m into the lane: past the tracker's entry check (1.5 m), within entry_max_depth (6 m).
+  for (const double lag : {0.3, 2.5}) {
+    const Drive r = drive(0, false, lagging_map(lag), gated());
+    EXPECT_EQ(r.last.state, NavState::done) << lag << " " << r.stop_message;
+    EXPECT_EQ(r.last.served, 2) << lag;
+    EXPECT_EQ(r.states, plain.states) << lag;
+  }
+}
+
+TEST(NavigatorPlaceGate, AMapThatStillSaysLanePastTheExitHoldsTheTurnThenStopsSayingWhy) {
+  const NavigatorConfig c = gated();
+  const Drive r = drive(
+      0, false, [](const core::Pose2&) { return map::Place::lane; }, c);
+  EXPECT_EQ(r.last.state, NavState::safe_stop);
+  EXPECT_EQ(r.last.stop_reason, StopReason::place_contradicts_plan);
+  EXPECT_EQ(r.last.served, 0);  // the corridor is not counted: its end is in doubt
+  EXPECT_NE(r.stop_message.find("still places the robot in a lane"), std::string::npos)
+      << r.stop_message;
+  // It drove exit_wait past the exit point along the row line, then stopped: no turn.
+  EXPECT_NEAR(r.T.x, kRowsEnd + c.exit_distance + c.place_gate.exit_wait, 0.1);
+  EXPECT_EQ(std::count(r.states.begin(), r.states.end(), NavState::turning), 0);
+}
+
+TEST(NavigatorPlaceGate, AnEntryTheMapCallsAnAlleyOrAGateIsASafeStop) {
+  for (const map::Place p : {map::Place::alley, map::Place::gate}) {
+    // The lane of corridor 0 is a lane; everything the robot enters after the turn is `p`.
+    const PlaceMap m = [p](const core::Pose2& T) {
+      return std::cos(T.theta) > 0.0 ? lagging_map(0.3)(T) : lagging_map(0.3, 0.3, p)(T);
+    };
+    const Drive r = drive(0, false, m, gated());
+    EXPECT_EQ(r.last.stop_reason, StopReason::place_contradicts_plan) << core::enum_name(p);
+    EXPECT_EQ(r.last.served, 1);
+    EXPECT_EQ(r.states[r.states.size() - 2], NavState::entering);
+    EXPECT_NE(r.stop_message.find(std::string(core::enum_name(p))), std::string::npos)
+        << r.stop_message;
+  }
+}
+
+TEST(NavigatorPlaceGate, AMapStuckInTheHeadlandStopsTheEntryAtItsMaximumDepth) {
+  const NavigatorConfig c = gated();
+  const Drive r = drive(0, false, lagging_map(c.entry_max_depth + 3.0), c);
+  EXPECT_EQ(r.last.stop_reason, StopReason::place_contradicts_plan);
+  EXPECT_EQ(r.states[r.states.size() - 2], NavState::entering);
+  EXPECT_NE(r.stop_message.find("in the headland"), std::string::npos) << r.stop_message;
+}
+
+TEST(NavigatorPlaceGate, OffTheDefaultTheGateIgnoresTheMap) {
+  const Drive r = drive(0, false, [](const core::Pose2&) { return map::Place::alley; });
+  EXPECT_EQ(r.last.state, NavState::done);
+  EXPECT_EQ(r.last.served, 2);
 }
 
 }  // namespace

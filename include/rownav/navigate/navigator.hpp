@@ -28,6 +28,7 @@
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/headland_manoeuvre.hpp"
 #include "rownav/navigate/mission_plan.hpp"
+#include "rownav/navigate/place_gate.hpp"
 #include "rownav/navigate/row_end_estimator.hpp"
 #include "rownav/navigate/row_end_poles.hpp"
 #include "rownav/track/row_tracker.hpp"
@@ -140,6 +141,8 @@ struct NavigatorConfig {
   ManoeuvreChoice manoeuvre = ManoeuvreChoice::automatic;  ///< headland turn
   ManoeuvreConfig turn;                                    ///< manoeuvre parameters
   RowEndConfig row_ends;  ///< row-end estimator in the headland (003 sec. II-C)
+  /// the map stage's validated place on the exit and the entry (Emmi 2021 Table 1; issue 12)
+  PlaceGateConfig place_gate;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -165,6 +168,7 @@ struct NavigatorConfig {
     v("manoeuvre", s.manoeuvre);
     v("turn", s.turn);
     v("row_ends", s.row_ends);
+    v("place_gate", s.place_gate);
   }
   void validate() const;
 };
@@ -185,6 +189,8 @@ struct NavInput {
   /// [m] to the nearest obstacle in the controllers' front rectangle (StackConfig::front,
   /// control/front_obstacle.hpp); +inf: clear
   double obstacle_distance = std::numeric_limits<double>::infinity();
+  /// the map stage's validated place (Emmi 2021 Table 1); nullopt: the stage is off
+  std::optional<map::Place> place;
 };
 
 /// The navigator's answer.
@@ -281,6 +287,7 @@ class Navigator {
   std::vector<Eigen::Vector2d> row_ends_;
   std::optional<core::Line2> entry_seen_;   // target corridor centre seen while entering (odom)
   std::optional<StateEffort> exit_effort_;  // set when the exit starts
+  std::optional<map::Place> place_;         // the map's place at the last frame (place_gate)
 };
 
 }  // namespace rownav::navigate
