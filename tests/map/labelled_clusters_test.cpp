@@ -44,14 +44,20 @@ TEST(LabelledClusters, OnlyCropPointsAndFinitePointsAreKept) {
   EXPECT_EQ(c.stored_points(), 1u);
 }
 
-TEST(LabelledClusters, PointsFarBehindAreForgotten) {
+/// A 3 m lane (two rows 1 m apart) scanned once from T and stored.
+LabelledClusters one_lane_seen_from(const core::Pose2& T) {
   SynthScene s;
   s.rows = test::block(1, 1.0, 0.0, 3.0);
   std::mt19937_64 rng(5);
   LabelledClusters c;
-  const core::Pose2 T(1.5, 0.5, 0.0);
   const auto f = test::scan(s, T, rng);
   c.add(f.points, f.labels, T);
+  return c;
+}
+
+TEST(LabelledClusters, PointsFarBehindAreForgotten) {
+  const core::Pose2 T(1.5, 0.5, 0.0);
+  LabelledClusters c = one_lane_seen_from(T);
   EXPECT_EQ(c.update(T).size(), 2u);
   EXPECT_TRUE(c.update(core::Pose2(10.0, 0.5, 0.0)).empty());  // 7 m past the rows
   EXPECT_EQ(c.stored_points(), 0u);
@@ -60,13 +66,8 @@ TEST(LabelledClusters, PointsFarBehindAreForgotten) {
 // Issue 12: row ends seen through a headland turn under odometry drift landed between the next
 // corridor's rows; what the robot saw before it turned keep_turn_deg is forgotten.
 TEST(LabelledClusters, PointsSeenBeforeTheRobotTurnedAreForgotten) {
-  SynthScene s;
-  s.rows = test::block(1, 1.0, 0.0, 3.0);
-  std::mt19937_64 rng(5);
-  LabelledClusters c;
   const core::Pose2 T(1.5, 0.5, 0.0);
-  const auto f = test::scan(s, T, rng);
-  c.add(f.points, f.labels, T);
+  LabelledClusters c = one_lane_seen_from(T);
   const double deg = std::numbers::pi / 180.0, keep = c.config().keep_turn_deg;
   // Turned on the spot: within keep_turn_deg the rows stay, beyond it they are gone.
   EXPECT_EQ(c.update(core::Pose2(1.5, 0.5, (keep - 5.0) * deg)).size(), 2u);
