@@ -127,9 +127,9 @@ void score(const core::RowObservation& obs, const sim::GroundTruth& gt, Rates& r
                 gt.lateral_error, gt.heading_error * 180.0 / std::numbers::pi, tl->line_base.y_at(0.0),
                 tr->line_base.y_at(0.0));
     for (std::size_t i = 0; i < obs.rows.size(); ++i)
-      std::printf(" %s%+.2f(%d, x %.1f..%.1f)", int(i) == obs.left ? "L" : int(i) == obs.right ? "R" : "",
+      std::printf(" %s%+.2f(%d, x %.1f..%.1f, %+.1f deg)", int(i) == obs.left ? "L" : int(i) == obs.right ? "R" : "",
                   obs.rows[i].line.y_at(0.0), obs.rows[i].support, obs.rows[i].x_min,
-                  obs.rows[i].x_max);
+                  obs.rows[i].x_max, obs.rows[i].heading * 180.0 / std::numbers::pi);
     std::printf("\n");
   }
 }
