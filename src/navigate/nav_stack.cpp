@@ -52,7 +52,8 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
       localizer_(config.localizer),
       external_(config.stack.odometry_history, config.stack.max_extrapolation),
       place_input_((config.validate(), config.place)),
-      cover_(config.stack.obstacles.cover) {
+      cover_(config.stack.obstacles.cover),
+      canopy_(config.stack.obstacles.canopy) {
   const StackMode mode = config_.stack.mode;
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
@@ -86,6 +87,7 @@ void NavStack::restart_mission() {
   if (parts_.controller) parts_.controller->reset();
   end_of_row_->reset();
   cover_.reset();
+  canopy_.reset();
   // The watchdog's budget and plausibility windows belong to the mission that ended; the
   // input health (fresh or stale samples) does not.
   phase_ = -1;
@@ -233,6 +235,20 @@ ObstacleBandConfig NavStack::obstacle_band(const core::PointCloud& cloud_base) {
   return band;
 }
 
+void NavStack::drop_row_canopy(const core::PointCloud& cloud_base, const ObstacleBandConfig& band,
+                               const track::RowTracking& tracking,
+                               std::vector<Eigen::Vector2f>& points) {
+  // Only while following a tracked corridor: its rows are what stands at the flanks (issue 10).
+  // Like the ground cover, the reach is the field's: kept across corridors and turns, so that the
+  // next corridor's first metres, with only headland behind the robot, are served too.
+  if (navigator_->state() != NavState::in_row || tracking.status == track::TrackStatus::lost)
+    return;
+  canopy_.update(cloud_base, parts_.pipeline->last_ground(),
+                 {band.min_height, band.max_height, robot_top()}, tracking.centre_line_base,
+                 config_.robot.base_to_front);
+  canopy_.drop_canopy(points, tracking.centre_line_base, config_.robot.width / 2.0);
+}
+
 double NavStack::robot_top() const {
   const auto& band = config_.stack.obstacles;
   if (band.robot_top > 0.0) return band.robot_top;
@@ -253,8 +269,9 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   const auto& cloud = parts_.pipeline->last_cloud_base();
   std::vector<Eigen::Vector2f> tall;
   if (!cloud.points.empty()) {
-    tall =
-        obstacle_points(cloud, parts_.pipeline->last_ground(), obstacle_band(cloud), robot_top());
+    const ObstacleBandConfig band = obstacle_band(cloud);
+    tall = obstacle_points(cloud, parts_.pipeline->last_ground(), band, robot_top());
+    drop_row_canopy(cloud, band, *report.tracking, tall);
     in.obstacle_points_base = std::span<const Eigen::Vector2f>(tall);
   } else if (!config_.stack.planar_obstacles) {
     in.obstacle_points_base = std::span<const Eigen::Vector2f>();  // drives over them

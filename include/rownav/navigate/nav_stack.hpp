@@ -27,6 +27,7 @@
 #include "rownav/localize/localizer.hpp"
 #include "rownav/localize/pose_history.hpp"
 #include "rownav/map/place_estimator.hpp"
+#include "rownav/navigate/canopy_reach.hpp"
 #include "rownav/navigate/ground_cover.hpp"
 #include "rownav/navigate/nav_stack_config.hpp"
 #include "rownav/navigate/navigator.hpp"
@@ -148,6 +149,8 @@ class NavStack {
   NavOutput navigate_frame(double stamp, const core::Pose2& T, FrameReport& report);
   ObstacleBandConfig obstacle_band(const core::PointCloud& cloud_base);  // this frame's band
   double robot_top() const;  // [m] base z above which points pass over the robot
+  void drop_row_canopy(const core::PointCloud& cloud_base, const ObstacleBandConfig& band,
+                       const track::RowTracking& tracking, std::vector<Eigen::Vector2f>& points);
   void measure_period(double frame_stamp);
   bool accept_frame(double frame_stamp);  // false: dropped (late, duplicate, not finite)
   void apply(const NavOutput& out);
@@ -166,8 +169,9 @@ class NavStack {
   std::unique_ptr<map::PlaceEstimator> place_;  // null: map stage disabled
   localize::Localizer localizer_;
   localize::PoseHistory external_;
-  PlaceInput place_input_;      // after the members built before validation (config_.validate())
-  GroundCoverEstimator cover_;  // validated config
+  PlaceInput place_input_;       // after the members built before validation (config_.validate())
+  GroundCoverEstimator cover_;   // validated config
+  CanopyReachEstimator canopy_;  // validated config
   std::deque<core::ImuSample> imu_;
   std::vector<core::ImuSample> imu_buf_;  // imu_ made contiguous for levelling, reused per frame
   std::unique_ptr<Pending> pending_;

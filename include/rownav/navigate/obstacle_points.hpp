@@ -10,6 +10,7 @@
 
 #include "rownav/core/config_fields.hpp"
 #include "rownav/core/point_cloud.hpp"
+#include "rownav/navigate/canopy_reach.hpp"
 #include "rownav/navigate/ground_cover.hpp"
 #include "rownav/preprocess/ground.hpp"
 
@@ -31,6 +32,8 @@ struct ObstacleBandConfig {
   double sensor_top = 0.1;  ///< [m] LiDAR housing and margin above its mount point (robot_top 0)
   /// The band's lower end follows the ground cover the robot drives through (ground_cover.hpp)
   GroundCoverConfig cover;
+  /// In a row, the followed rows' canopy at the robot's flanks is no obstacle (canopy_reach.hpp)
+  CanopyReachConfig canopy;
   double range = 6.0;       ///< [m] ahead of the base origin (covers the slow-down rectangle)
   double half_width = 1.0;  ///< [m] either side of the robot's centre line
 
@@ -41,6 +44,7 @@ struct ObstacleBandConfig {
     v("robot_top", s.robot_top);
     v("sensor_top", s.sensor_top);
     v("cover", s.cover);
+    v("canopy", s.canopy);
     v("range", s.range);
     v("half_width", s.half_width);
   }
@@ -52,6 +56,7 @@ struct ObstacleBandConfig {
     core::check_non_negative(robot_top, "robot_top");
     core::check_non_negative(sensor_top, "sensor_top");
     core::validate_nested(cover, "cover");
+    core::validate_nested(canopy, "canopy");
   }
 };
 
