@@ -29,7 +29,7 @@ MissionControl::MissionControl(bool autostart)
 MissionAnswer MissionControl::start(navigate::NavState nav) {
   // A new mission from where the robot stands: the operator has put it at the start of the
   // plan's first corridor (issue 15: restart in place, no node restart).
-  if (phase_ == MissionPhase::stopped || mission_ended(nav)) {
+  if (starts_new_mission(nav)) {
     const std::string was = phase_ == MissionPhase::stopped ? "stopped in " + name(nav) : name(nav);
     phase_ = MissionPhase::running;
     return {true, "new mission started (the last one " + was + ")", true};
@@ -44,6 +44,10 @@ MissionAnswer MissionControl::start(navigate::NavState nav) {
       phase_ = MissionPhase::running;
       return {true, "mission started in " + name(nav)};
   }
+}
+
+bool MissionControl::starts_new_mission(navigate::NavState nav) const {
+  return phase_ == MissionPhase::stopped || mission_ended(nav);
 }
 
 MissionAnswer MissionControl::pause(navigate::NavState nav) {

@@ -46,12 +46,16 @@ int corridor_count_for(const NodeConfig& node, const navigate::MissionPlan& plan
 
 }  // namespace
 
+std::vector<int> mission_order(const NodeConfig& node, const navigate::MissionPlan& plan) {
+  return navigate::resolve_order(plan, corridor_count_for(node, plan));
+}
+
 StackSetup load_stack(const NodeConfig& node) {
   node.validate();
   StackSetup s;
   s.node = node;
   s.mission = node.mission.empty() ? navigate::MissionPlan{} : io::load_mission(node.mission);
-  s.order = navigate::resolve_order(s.mission, corridor_count_for(node, s.mission));
+  s.order = mission_order(node, s.mission);
   s.navigator = load_or_default<navigate::NavigatorConfig>(node.nav_config);
   s.end_of_row = load_or_default<navigate::EndOfRowConfig>(node.end_of_row_config);
   // Footprint and limits exactly as `rownav run` derives them from the same robot file.

@@ -73,11 +73,13 @@ RosNode::RosNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   std_msgs::String initial;
   initial.data = last_state_ = core_->state_name(core_->navigator().state());
   state_pub_.publish(initial);
-  ROS_INFO("rownav_node: %s input, pose from %s, detector %s, tracker %s, controller %s, %zu corridors, %s, %s",
-           c.input.c_str(), c.odometry == "odom" ? "odom" : "joint_states + imu (own EKF)",
-           c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(),
-           core_->setup().order.size(), enabled_ ? "driving" : "observing only",
-           c.autostart ? "mission running" : "waiting for ~start");
+  ROS_INFO(
+      "rownav_node: %s input, pose from %s, detector %s, tracker %s, controller %s, %zu corridors, "
+      "%s, %s",
+      c.input.c_str(), c.odometry == "odom" ? "odom" : "joint_states + imu (own EKF)",
+      c.detector.c_str(), c.tracker.c_str(), c.controller.c_str(), core_->setup().order.size(),
+      enabled_ ? "driving" : "observing only",
+      c.autostart ? "mission running" : "waiting for ~start");
 }
 
 RosNode::~RosNode() {
@@ -211,7 +213,12 @@ void RosNode::on_fix(const sensor_msgs::NavSatFix::ConstPtr& msg) {
 }
 
 bool RosNode::on_start(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  return answer(core_->start(), res);
+  // A new mission reads ~mission and ~corridor_count as they are now (issue 15: another plan
+  // without restarting the node); a resume does not.
+  NodeConfig node = core_->setup().node;
+  pnh_.getParam("mission", node.mission);
+  pnh_.getParam("corridor_count", node.corridor_count);
+  return answer(core_->start(node), res);
 }
 
 bool RosNode::on_pause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -250,7 +257,9 @@ void RosNode::publish_cmd(const core::Twist2& cmd) {
   if (enabled_) cmd_pub_.publish(to_twist_msg(cmd));
 }
 
-void RosNode::publish_stop() { publish_cmd({}); }
+void RosNode::publish_stop() {
+  publish_cmd({});
+}
 
 void RosNode::publish_frame(const FrameResult& r, const ros::Time& stamp) {
   if (!r.ok && !r.held) ROS_WARN_THROTTLE(1.0, "rownav_node: stopping: %s", r.error.c_str());

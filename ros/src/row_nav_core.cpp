@@ -8,6 +8,7 @@
 
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/detector_registry.hpp"
+#include "rownav/io/mission_io.hpp"
 #include "rownav/io/tracker_registry.hpp"
 
 namespace rownav::ros_bridge {
@@ -68,6 +69,27 @@ void RowNavCore::set_mount(const Eigen::Isometry3d& T_base_lidar) {
 MissionAnswer RowNavCore::start() {
   MissionAnswer a = mission_.start(navigator().state());
   if (a.new_mission) stack_->restart_mission();
+  return a;
+}
+
+MissionAnswer RowNavCore::start(const NodeConfig& node) {
+  if (!mission_.starts_new_mission(navigator().state())) return start();
+  navigate::MissionPlan plan;
+  std::vector<int> order;
+  try {
+    plan = node.mission.empty() ? navigate::MissionPlan{} : io::load_mission(node.mission);
+    order = mission_order(node, plan);
+  } catch (const std::exception& e) {
+    return {false, std::string("no new mission: ") + e.what()};
+  }
+  MissionAnswer a = mission_.start(navigator().state());
+  setup_.node.mission = node.mission;
+  setup_.node.corridor_count = node.corridor_count;
+  setup_.mission = plan;
+  setup_.order = order;
+  stack_->restart_mission(std::move(order), plan.first_turn);
+  const std::string first = std::to_string(setup_.order.front());
+  a.message += ", " + std::to_string(setup_.order.size()) + " corridors from corridor " + first;
   return a;
 }
 

@@ -81,6 +81,13 @@ void NavStack::begin_mission() {
     place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
 }
 
+void NavStack::restart_mission(std::vector<int> order, TurnSide first_turn) {
+  core::check(!order.empty(), "order", "must name at least one corridor");
+  order_ = std::move(order);
+  first_turn_ = first_turn;
+  restart_mission();
+}
+
 void NavStack::restart_mission() {
   begin_mission();
   if (parts_.tracker) parts_.tracker->reset();

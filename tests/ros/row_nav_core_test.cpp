@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "row_nav_scene.hpp"
 
@@ -230,6 +233,55 @@ TEST(RowNavCore, AfterASafeStopStartBeginsANewMissionThatDrives) {
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
   EXPECT_GT(r.cmd.v, 0.05);
+}
+
+TEST(RowNavCore, ANewMissionReadsTheMissionFileAfreshAndABadOneStartsNothing) {
+  // Issue 15: after a stop, the operator names another plan (the field's corridors 2-4) and
+  // starts it where the robot stands, without restarting the node.
+  const std::string dir = ::testing::TempDir();
+  const std::string good = dir + "/rownav_restart_mission.yaml",
+                    bad = dir + "/rownav_restart_mission_bad.yaml";
+  std::ofstream(good) << "first_turn: right\nstart_corridor: 2\n";
+  std::ofstream(bad) << "start_corridor: 7\n";  // beyond the block's 5 corridors
+  const Scene scene(0.0, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  Sweeps sweeps(scene);
+  core.set_mount(sweeps.mount());
+  double t = 100.0;
+  rb::FrameResult r;
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(core.navigator().order(), std::vector<int>{0});
+  rb::NodeConfig node = core.setup().node;
+  node.corridor_count = 5;
+  node.mission = good;
+  // Running: a start is no new mission, the plan stays.
+  EXPECT_EQ(core.start(node).message, "already running (in_row)");
+  EXPECT_EQ(core.navigator().order(), std::vector<int>{0});
+  ASSERT_TRUE(core.stop().success);
+  node.mission = bad;
+  const rb::MissionAnswer refused = core.start(node);
+  EXPECT_FALSE(refused.success);
+  EXPECT_EQ(refused.message.rfind("no new mission: ", 0), 0u) << refused.message;
+  EXPECT_NE(refused.message.find("start_corridor"), std::string::npos) << refused.message;
+  EXPECT_EQ(refused.message.find('\n'), std::string::npos);
+  EXPECT_EQ(core.state_name(core.navigator().state()), "stopped");
+  node.mission = good;
+  const rb::MissionAnswer a = core.start(node);
+  EXPECT_TRUE(a.success);
+  EXPECT_TRUE(a.new_mission);
+  EXPECT_EQ(a.message,
+            "new mission started (the last one stopped in in_row), 3 corridors from corridor 2");
+  EXPECT_EQ(core.navigator().order(), (std::vector<int>{2, 3, 4}));
+  EXPECT_EQ(core.setup().mission.first_turn, rownav::navigate::TurnSide::right);
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
+  EXPECT_GT(r.cmd.v, 0.05);
+  // The new plan is the node's now: a later plain restart keeps it.
+  ASSERT_TRUE(core.stop().success);
+  EXPECT_TRUE(core.start().new_mission);
+  EXPECT_EQ(core.navigator().order(), (std::vector<int>{2, 3, 4}));
 }
 
 TEST(RowNavCore, NavSatFixesReachTheStackRejectedOnesAsOutages) {

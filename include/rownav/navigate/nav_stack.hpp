@@ -126,6 +126,11 @@ class NavStack {
   /// are kept, so the odom frame stays continuous (REP 105). The robot is to stand in the
   /// plan's first corridor, as at construction. A frame not yet processed is kept.
   void restart_mission();
+  /// restart_mission() with another plan: `order` (resolve_order's corridors, not empty) and the
+  /// side of its first turn, for an operator who has put the robot at the entrance of that
+  /// plan's first corridor (issue 15: resume a field from its third corridor after a battery
+  /// change). Later restarts keep this plan. Throws std::invalid_argument on an empty order.
+  void restart_mission(std::vector<int> order, TurnSide first_turn);
 
   /// T_odom_base at `stamp` from the configured source (nullopt before any odometry).
   std::optional<core::Pose2> T_odom_base(double stamp) const;

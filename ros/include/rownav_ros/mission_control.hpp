@@ -44,6 +44,8 @@ class MissionControl {
   /// Command zero at once, the mission kept; refused once stopped. `nav` words the answer (a
   /// pause in an odometry-closed manoeuvre counts into its time budget).
   MissionAnswer pause(navigate::NavState nav);
+  /// Whether start(nav) would begin a new mission (after a stop, done or safe_stop).
+  bool starts_new_mission(navigate::NavState nav) const;
   /// Command zero until a new mission is started. Always succeeds.
   MissionAnswer stop(navigate::NavState nav);
 

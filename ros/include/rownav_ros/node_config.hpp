@@ -6,10 +6,10 @@
 
 #include "rownav/control/velocity_limits.hpp"
 #include "rownav/core/config_fields.hpp"
+#include "rownav/localize/localizer.hpp"
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/mission_plan.hpp"
 #include "rownav/navigate/navigator.hpp"
-#include "rownav/localize/localizer.hpp"
 #include "rownav_ros/joint_state_conversion.hpp"
 #include "rownav_ros/navsat_conversion.hpp"
 
@@ -18,7 +18,7 @@ namespace rownav::ros_bridge {
 /// Private parameters of rownav_node (~name). Paths may be empty: that component's defaults.
 /// The component names and files are those of `rownav run` (--detector, --detect-config, ...).
 struct NodeConfig {
-  std::string input = "cloud";           ///< "cloud" (PointCloud2 on `cloud`) or "scan" (`scan`)
+  std::string input = "cloud";  ///< "cloud" (PointCloud2 on `cloud`) or "scan" (`scan`)
   /// pose source: "odom" (the robot's nav_msgs/Odometry on `odom`) or "joint_states" (its wheel
   /// joints, sensor_msgs/JointState on `joint_states`, + the IMU on `imu` through rownav's own
   /// wheel odometry + EKF, the localizer `rownav run` measures; see `wheels`)
@@ -39,17 +39,17 @@ struct NodeConfig {
   std::string base_frame = "base_link";  ///< REP 105 base frame
   /// T_base_lidar as [x, y, z, roll, pitch, yaw] (m, rad); empty: looked up in tf2 once
   std::vector<double> lidar_mount;
-  bool enabled = true;             ///< publish cmd_vel (false: observe only)
+  bool enabled = true;  ///< publish cmd_vel (false: observe only)
   /// the mission runs from start-up (false: command zero, state `waiting`, until ~start)
   bool autostart = true;
-  bool use_imu = false;            ///< gyro yaw rate replaces the odometry yaw rate
-  double odom_history = 2.0;       ///< [s] odometry poses kept for frame-stamp interpolation
-  double max_extrapolation = 0.2;  ///< [s] a frame may be this much newer than the odometry
+  bool use_imu = false;               ///< gyro yaw rate replaces the odometry yaw rate
+  double odom_history = 2.0;          ///< [s] odometry poses kept for frame-stamp interpolation
+  double max_extrapolation = 0.2;     ///< [s] a frame may be this much newer than the odometry
   double nominal_frame_period = 0.1;  ///< [s] dt of the first command (acceleration limit)
   /// [Hz] the watchdog timer: cmd_vel is re-evaluated (zero on stale inputs) at this rate even
   /// when no message arrives; diagnostics are published once a second
   double watchdog_rate = 20.0;
-  NavSatConfig gnss;  ///< `fix` (sensor_msgs/NavSatFix) -> local ENU (~gnss/<key>)
+  NavSatConfig gnss;        ///< `fix` (sensor_msgs/NavSatFix) -> local ENU (~gnss/<key>)
   WheelJointConfig wheels;  ///< odometry "joint_states": which joints are wheels (~wheels/<key>)
   /// odometry "joint_states": broadcast the stack's own pose as tf odom_frame -> base_frame and
   /// publish it on ~odom (REP 105; nobody else does then). Off when the robot's driver already
@@ -105,5 +105,9 @@ struct StackSetup {
 /// Loads the files named in `node` (mission, navigator, end of row, robot) with the CLI's strict
 /// loaders and resolves the corridor order. Throws io::InputError / std::invalid_argument.
 StackSetup load_stack(const NodeConfig& node);
+
+/// The corridor order of `plan` for `node` (its corridor_count, or the one the plan implies).
+/// Throws std::invalid_argument naming the field.
+std::vector<int> mission_order(const NodeConfig& node, const navigate::MissionPlan& plan);
 
 }  // namespace rownav::ros_bridge

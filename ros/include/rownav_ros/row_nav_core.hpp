@@ -103,6 +103,12 @@ class RowNavCore {
   /// stop or after the navigator ended the mission begins a new one where the robot stands
   /// (NavStack::restart_mission: the odom frame continues).
   MissionAnswer start();
+  /// start(), and a start that begins a new mission reads the mission afresh: `node`'s mission
+  /// file and corridor_count (an operator sets `~mission` / `~corridor_count`, puts the robot at
+  /// the entrance of that plan's first corridor and calls ~start; issue 15). A file that does
+  /// not load or an order that does not resolve answers false in one line and starts nothing.
+  /// A resume (after a pause) or a start of the mission already running ignores `node`.
+  MissionAnswer start(const NodeConfig& node);
   MissionAnswer pause() { return mission_.pause(navigator().state()); }
   MissionAnswer stop() { return mission_.stop(navigator().state()); }
   const MissionControl& mission() const { return mission_; }
