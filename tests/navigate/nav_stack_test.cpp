@@ -333,6 +333,20 @@ TEST(NavStack, ARestartedMissionDrivesAgainFromWhereTheRobotStoodInTheSameOdomFr
   EXPECT_GT(T_end->x, T_before->x + 0.2);  // driven on from there
 }
 
+TEST(NavStack, ARestartWithAnotherPlanServesThatPlanAndAnEmptyOneIsRefused) {
+  NavStack s = make_stack();
+  drive_from(s, 0.0, 1.0, true, true);
+  EXPECT_THROW(s.restart_mission({}, TurnSide::left), std::invalid_argument);
+  EXPECT_EQ(s.navigator().order(), (std::vector<int>{0, 1}));  // refused: nothing changed
+  s.restart_mission({3, 4}, TurnSide::right);
+  EXPECT_EQ(s.navigator().order(), (std::vector<int>{3, 4}));
+  const auto again = drive_from(s, 1.0, 1.0, true, true);
+  EXPECT_EQ(again.back().state, NavState::in_row);
+  EXPECT_EQ(again.back().corridor, 3);  // the new plan's first corridor
+  s.restart_mission();                  // a plain restart keeps the last plan
+  EXPECT_EQ(s.navigator().order(), (std::vector<int>{3, 4}));
+}
+
 TEST(NavStackWatchdog, AStateMayTakeItsBudgetButNotMore) {
   const WatchdogConfig w;
   const StateEffort exit{4.0, 5.0};  // 4 m at 0.8 m/s
