@@ -184,7 +184,8 @@ TEST_F(NodeAgainstAMaster, PauseStartStopServicesZeroTheCommandAndResume) {
   EXPECT_EQ(listener.state(), "stopped");
   const std_srvs::Trigger again = call("start");
   EXPECT_TRUE(again.response.success);
-  EXPECT_EQ(again.response.message, "new mission started (the last one stopped in in_row)");
+  EXPECT_EQ(again.response.message,
+            "new mission started (the last one stopped in in_row), 2 corridors from corridor 0");
   EXPECT_TRUE(listener.wait_driving(0.1, std::chrono::seconds(3)));  // a new mission, in place
   EXPECT_EQ(listener.state(), "in_row");
   spinner.stop();
