@@ -14,6 +14,17 @@
 
 using namespace row_nav_test;
 
+namespace {
+
+/// Five frames of 0.1 s from `t` (advanced past them); the last one's result.
+rb::FrameResult steps(rb::RowNavCore& core, Sweeps& sweeps, const Scene& scene, double& t) {
+  rb::FrameResult r;
+  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  return r;
+}
+
+}  // namespace
+
 TEST(RowNavCore, DrivesForwardAndSeesTheOffset) {
   const Scene scene(0.3, 0.1);  // left of the centre, heading left
   rb::RowNavCore core(vineyard_setup());
@@ -112,7 +123,7 @@ TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
   core.set_mount(sweeps.mount());
   double t = 100.0;
   rb::FrameResult r;
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_GT(r.cmd.v, 0.0);
   EXPECT_TRUE(core.pause().success);
@@ -138,7 +149,7 @@ TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
   const rb::MissionAnswer a = core.start();
   EXPECT_TRUE(a.success);
   EXPECT_EQ(a.message, "resumed in in_row");
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
   EXPECT_EQ(core.state_name(r.state), "in_row");
@@ -190,7 +201,7 @@ TEST(RowNavCore, WaitsForStartAndAfterAStopStartBeginsANewMission) {
   }
   expect_zero(core.tick(t).cmd);
   EXPECT_EQ(core.start().message, "mission started in in_row");
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_GT(r.cmd.v, 0.05);
   EXPECT_TRUE(core.stop().success);
@@ -206,7 +217,7 @@ TEST(RowNavCore, WaitsForStartAndAfterAStopStartBeginsANewMission) {
   const rb::MissionAnswer again = core.start();
   EXPECT_TRUE(again.success);
   EXPECT_TRUE(again.new_mission);
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
   EXPECT_EQ(core.state_name(r.state), "in_row");
@@ -229,7 +240,7 @@ TEST(RowNavCore, AfterASafeStopStartBeginsANewMissionThatDrives) {
   EXPECT_TRUE(a.success);
   EXPECT_EQ(a.message, "new mission started (the last one safe_stop)");
   EXPECT_EQ(core.navigator().state(), rownav::navigate::NavState::in_row);
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
   EXPECT_GT(r.cmd.v, 0.05);
@@ -249,7 +260,7 @@ TEST(RowNavCore, ANewMissionReadsTheMissionFileAfreshAndABadOneStartsNothing) {
   core.set_mount(sweeps.mount());
   double t = 100.0;
   rb::FrameResult r;
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(core.navigator().order(), std::vector<int>{0});
   rb::NodeConfig node = core.setup().node;
@@ -274,7 +285,7 @@ TEST(RowNavCore, ANewMissionReadsTheMissionFileAfreshAndABadOneStartsNothing) {
             "new mission started (the last one stopped in in_row), 3 corridors from corridor 2");
   EXPECT_EQ(core.navigator().order(), (std::vector<int>{2, 3, 4}));
   EXPECT_EQ(core.setup().mission.first_turn, rownav::navigate::TurnSide::right);
-  for (int k = 0; k < 5; ++k, t += 0.1) r = step(core, sweeps, scene.pose, t);
+  r = steps(core, sweeps, scene, t);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
   EXPECT_GT(r.cmd.v, 0.05);
