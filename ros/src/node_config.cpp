@@ -46,6 +46,10 @@ int corridor_count_for(const NodeConfig& node, const navigate::MissionPlan& plan
 
 }  // namespace
 
+navigate::MissionPlan load_node_mission(const NodeConfig& node) {
+  return node.mission.empty() ? navigate::MissionPlan{} : io::load_mission(node.mission);
+}
+
 std::vector<int> mission_order(const NodeConfig& node, const navigate::MissionPlan& plan) {
   return navigate::resolve_order(plan, corridor_count_for(node, plan));
 }
@@ -54,7 +58,7 @@ StackSetup load_stack(const NodeConfig& node) {
   node.validate();
   StackSetup s;
   s.node = node;
-  s.mission = node.mission.empty() ? navigate::MissionPlan{} : io::load_mission(node.mission);
+  s.mission = load_node_mission(node);
   s.order = mission_order(node, s.mission);
   s.navigator = load_or_default<navigate::NavigatorConfig>(node.nav_config);
   s.end_of_row = load_or_default<navigate::EndOfRowConfig>(node.end_of_row_config);

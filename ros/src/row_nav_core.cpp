@@ -8,7 +8,6 @@
 
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/detector_registry.hpp"
-#include "rownav/io/mission_io.hpp"
 #include "rownav/io/tracker_registry.hpp"
 
 namespace rownav::ros_bridge {
@@ -77,7 +76,7 @@ MissionAnswer RowNavCore::start(const NodeConfig& node) {
   navigate::MissionPlan plan;
   std::vector<int> order;
   try {
-    plan = node.mission.empty() ? navigate::MissionPlan{} : io::load_mission(node.mission);
+    plan = load_node_mission(node);
     order = mission_order(node, plan);
   } catch (const std::exception& e) {
     return {false, std::string("no new mission: ") + e.what()};

@@ -6,6 +6,7 @@
 #include "common/flat_ground.hpp"
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -17,6 +18,9 @@ using test::pt;
 
 constexpr double kHalfWidth = 0.3;  // [m] a 0.6 m robot
 constexpr double kFront = 0.45;     // [m] base origin to the front
+// The obstacle band of these scenes: 0.3-2.5 m above the ground, no robot top (the rows'
+// points stand at 0.5 m).
+const HeightBand kBand{0.3, 2.5, std::numeric_limits<double>::infinity()};
 
 /// Where the robot stands in the corridor: offset from the centre line (left +) and yaw.
 struct Pose {
@@ -62,7 +66,7 @@ CanopyReachEstimator driven(double deepest, const Pose& pose, std::uint64_t seed
   std::mt19937_64 rng(seed);
   CanopyReachEstimator canopy;
   for (int f = 0; f < frames; ++f)
-    canopy.update(clumpy_rows(deepest, pose, rng), ground, {}, pose.centre_base(), kFront);
+    canopy.update(clumpy_rows(deepest, pose, rng), ground, kBand, pose.centre_base(), kFront);
   return canopy;
 }
 
@@ -126,10 +130,10 @@ TEST(CanopyReach, NothingMeasuredDropsNothingAndAStrayFrameDoesNotSetTheReach) {
   // 60 frames of canopy 0.6 m out, one frame with a clump 0.1 m from the centre.
   std::mt19937_64 rng(3);
   for (int f = 0; f < 60; ++f)
-    canopy.update(clumpy_rows(0.6, pose, rng), ground, {}, pose.centre_base(), kFront);
+    canopy.update(clumpy_rows(0.6, pose, rng), ground, kBand, pose.centre_base(), kFront);
   auto stray = clumpy_rows(0.6, pose, rng);
   for (int k = 0; k < 20; ++k) stray.points.push_back(pt(-1.0f, 0.1f, 0.5f));
-  canopy.update(stray, ground, {}, pose.centre_base(), kFront);
+  canopy.update(stray, ground, kBand, pose.centre_base(), kFront);
   EXPECT_GT(canopy.reach(1.0), 0.55);
   canopy.drop_canopy(flank, pose.centre_base(), kHalfWidth);
   EXPECT_EQ(flank.size(), 1u);  // 0.28 m is 0.3 m deeper than this canopy
@@ -145,7 +149,7 @@ TEST(CanopyReach, DisabledNonFiniteOrNoCorridorChangesNothing) {
   off.enabled = false;
   CanopyReachEstimator disabled(off);
   for (int f = 0; f < 40; ++f)
-    disabled.update(clumpy_rows(0.25, pose, rng), ground, {}, pose.centre_base(), kFront);
+    disabled.update(clumpy_rows(0.25, pose, rng), ground, kBand, pose.centre_base(), kFront);
   std::vector<Eigen::Vector2f> flank = {pose.to_base(kFront + 0.3, 0.28)};
   disabled.drop_canopy(flank, pose.centre_base(), kHalfWidth);
   EXPECT_EQ(flank.size(), 1u);
@@ -154,13 +158,13 @@ TEST(CanopyReach, DisabledNonFiniteOrNoCorridorChangesNothing) {
   auto bad = clumpy_rows(0.25, pose, rng);
   bad.points.push_back(pt(std::nanf(""), 0.0f, 0.5f));
   bad.points.push_back(pt(-1.0f, INFINITY, 0.5f));
-  canopy.update(bad, ground, {}, pose.centre_base(), kFront);
+  canopy.update(bad, ground, kBand, pose.centre_base(), kFront);
   EXPECT_TRUE(std::isfinite(canopy.reach(1.0)));
   core::Line2 none;
   none.point = Eigen::Vector2d::Constant(std::nan(""));
   canopy.drop_canopy(flank, none, kHalfWidth);  // no corridor: nothing is the rows'
   EXPECT_EQ(flank.size(), 1u);
-  canopy.update(bad, ground, {}, none, kFront);  // and the corridor's history is forgotten
+  canopy.update(bad, ground, kBand, none, kFront);  // and the corridor's history is forgotten
   EXPECT_TRUE(std::isinf(canopy.reach(1.0)));
 }
 

@@ -66,12 +66,13 @@ struct CanopyReachConfig {
   }
 };
 
-/// Which points of a sweep are the obstacle band's (height above the ground and base-frame z).
+/// Which points of a sweep are the obstacle band's (height above the ground and base-frame z):
+/// this frame's ObstacleBandConfig heights and the robot's top, set by the caller (NavStack), so
+/// no default is restated here.
 struct HeightBand {
-  double min_height = 0.3;                               ///< [m] above the local ground
-  double max_height = 2.5;                               ///< [m] above the local ground
-  double top = std::numeric_limits<double>::infinity();  ///< [m] base-frame z: higher points pass
-                                                         ///< over the robot
+  double min_height;  ///< [m] above the local ground
+  double max_height;  ///< [m] above the local ground
+  double top;         ///< [m] base-frame z: higher points pass over the robot
 };
 
 /// A low quantile over recent frames of the innermost reach of each side's canopy, in the corridor
@@ -92,7 +93,7 @@ class CanopyReachEstimator {
   /// not deeper into the footprint (|y| < half_width) than max_intrusion * half_width.
   void drop_canopy(std::vector<Eigen::Vector2f>& points, const core::Line2& centre_base,
                    double half_width) const;
-  /// Forgets the history (a new corridor, or no corridor tracked).
+  /// Forgets the history (NavStack: a new mission; update() without a finite centre line).
   void reset();
 
  private:

@@ -106,6 +106,9 @@ struct StackSetup {
 /// loaders and resolves the corridor order. Throws io::InputError / std::invalid_argument.
 StackSetup load_stack(const NodeConfig& node);
 
+/// The mission file named by `node` (MissionPlan{} when none). Throws io::InputError.
+navigate::MissionPlan load_node_mission(const NodeConfig& node);
+
 /// The corridor order of `plan` for `node` (its corridor_count, or the one the plan implies).
 /// Throws std::invalid_argument naming the field.
 std::vector<int> mission_order(const NodeConfig& node, const navigate::MissionPlan& plan);
