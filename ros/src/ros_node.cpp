@@ -102,17 +102,17 @@ void RosNode::publish_diagnostics(const TickResult& t) {
   s.name = "rownav_node: inputs and mission";
   s.hardware_id = core_->setup().node.base_frame;
   const bool stopped = t.state == navigate::NavState::safe_stop;
-  const bool held = !core_->mission().running();  // inputs held back on purpose: no warning
+  // Held (not running): the stack still tracks every frame, so a stale input is a real one.
+  const bool held = !core_->mission().running();
   const std::string phase(core::enum_name(core_->mission().phase()));
-  s.level = stopped ? diagnostic_msgs::DiagnosticStatus::ERROR
-            : t.health != navigate::InputHealth::ok && !held
-                ? diagnostic_msgs::DiagnosticStatus::WARN
-                : diagnostic_msgs::DiagnosticStatus::OK;
+  s.level = stopped                                 ? diagnostic_msgs::DiagnosticStatus::ERROR
+            : t.health != navigate::InputHealth::ok ? diagnostic_msgs::DiagnosticStatus::WARN
+                                                    : diagnostic_msgs::DiagnosticStatus::OK;
   s.message = stopped ? "safe stop: " + std::string(core::enum_name(t.stop_reason))
-              : held  ? "mission " + phase + ": command zero"
               : t.health == navigate::InputHealth::lidar_stale    ? "LiDAR stale: command zero"
               : t.health == navigate::InputHealth::odometry_stale ? "odometry stale: command zero"
-                                                                  : "ok";
+              : held ? "mission " + phase + ": command zero"
+                     : "ok";
   auto kv = [&](const std::string& k, const std::string& v) {
     diagnostic_msgs::KeyValue p;
     p.key = k, p.value = v;

@@ -53,21 +53,41 @@ RowNavCore::RowNavCore(StackSetup setup)
       stack_(make_node_stack(setup_, Eigen::Isometry3d::Identity())),
       mission_(setup_.node.autostart),
       navsat_(setup_.node.gnss),
-      joints_(setup_.node.wheels) {}
+      joints_(setup_.node.wheels) {
+  hold_unless_running();
+}
 
 RowNavCore::~RowNavCore() = default;
 
 void RowNavCore::set_mount(const Eigen::Isometry3d& T_base_lidar) {
   // Known once, before the first frame (parameter or tf): the stack starts with it.
   stack_ = make_node_stack(setup_, T_base_lidar);
+  hold_unless_running();
   mount_set_ = true;
   started_ = false;
   last_odom_stamp_.reset();
 }
 
+void RowNavCore::hold_unless_running() {
+  stack_->set_held(!mission_.running());
+}
+
 MissionAnswer RowNavCore::start() {
   MissionAnswer a = mission_.start(navigator().state());
   if (a.new_mission) stack_->restart_mission();
+  hold_unless_running();
+  return a;
+}
+
+MissionAnswer RowNavCore::pause() {
+  MissionAnswer a = mission_.pause(navigator().state());
+  hold_unless_running();
+  return a;
+}
+
+MissionAnswer RowNavCore::stop() {
+  MissionAnswer a = mission_.stop(navigator().state());
+  hold_unless_running();
   return a;
 }
 
@@ -87,6 +107,7 @@ MissionAnswer RowNavCore::start(const NodeConfig& node) {
   setup_.mission = plan;
   setup_.order = order;
   stack_->restart_mission(std::move(order), plan.first_turn);
+  hold_unless_running();
   const std::string first = std::to_string(setup_.order.front());
   a.message += ", " + std::to_string(setup_.order.size()) + " corridors from corridor " + first;
   return a;
@@ -105,18 +126,8 @@ FrameResult RowNavCore::fail(double stamp, std::string why) {
   return r;
 }
 
-FrameResult RowNavCore::held(double stamp) const {
-  FrameResult r;
-  r.held = true;
-  r.stamp = stamp;
-  r.state = stack_->navigator().state();
-  r.stop_reason = stack_->navigator().stop_reason();
-  return r;
-}
-
 FrameResult RowNavCore::on_cloud(const sensor_msgs::PointCloud2& msg) {
   const double stamp = to_sec(msg.header.stamp);
-  if (!mission_.running()) return held(stamp);
   try {
     if (!mount_set_) return fail(stamp, "no LiDAR mount (T_base_lidar) yet");
     stack_->on_cloud(to_point_cloud(msg));
@@ -128,7 +139,6 @@ FrameResult RowNavCore::on_cloud(const sensor_msgs::PointCloud2& msg) {
 
 FrameResult RowNavCore::on_scan(const sensor_msgs::LaserScan& msg) {
   const double stamp = to_sec(msg.header.stamp);
-  if (!mission_.running()) return held(stamp);
   try {
     if (!mount_set_) return fail(stamp, "no LiDAR mount (T_base_lidar) yet");
     stack_->on_scan(to_scan(msg));
@@ -210,11 +220,6 @@ TickResult RowNavCore::tick(double stamp) {
   }
   navigate::NavCommand c = command_at(stamp);
   r.cmd = mission_.gate(c.cmd);
-  // Held: the LiDAR goes stale on purpose (frames held back), no warning for that.
-  if (!mission_.running())
-    std::erase_if(c.events, [](const navigate::NavEvent& e) {
-      return e.kind == navigate::NavEventKind::input_stale;
-    });
   r.health = c.health;
   r.lidar_age = c.lidar_age;
   r.odometry_age = c.odometry_age;
@@ -245,6 +250,7 @@ FrameResult RowNavCore::frame(double stamp) {
   started_ = true;
   FrameResult r;
   r.ok = true;
+  r.held = stack_->held();
   r.stamp = stamp;
   r.cmd = c.cmd;
   r.tracking = std::move(*c.frame->tracking);

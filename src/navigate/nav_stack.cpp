@@ -335,7 +335,7 @@ NavCommand NavStack::command(double stamp) {
     std::unique_ptr<Pending> frame = std::move(pending_);
     FrameReport report = process_frame(*frame, T);
     ++stats_.frames;
-    if (config_.stack.mode == StackMode::navigate && report.tracking && T && finite(*T))
+    if (!held_ && config_.stack.mode == StackMode::navigate && report.tracking && T && finite(*T))
       out = navigate_frame(stamp, *T, report);
     else
       out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
@@ -347,7 +347,7 @@ NavCommand NavStack::command(double stamp) {
   } else {
     out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
   }
-  if (config_.stack.mode != StackMode::navigate) out.cmd = {};
+  if (held_ || config_.stack.mode != StackMode::navigate) out.cmd = {};
   if (config_.stack.mode == StackMode::navigate) {
     apply(out);
     watch_budget(out, stamp, T);
@@ -359,7 +359,7 @@ NavCommand NavStack::command(double stamp) {
   c.cmd = limit(out.cmd, stamp);
   // Stale inputs or a stop: zero at once, not ramped down by the acceleration limit (the
   // robot's own drive brakes; a ramp would keep moving for max_speed / max_accel seconds).
-  if (c.health != InputHealth::ok || terminal(out.state)) c.cmd = sent_cmd_ = {};
+  if (held_ || c.health != InputHealth::ok || terminal(out.state)) c.cmd = sent_cmd_ = {};
   last_command_stamp_ = stamp;
   c.state = out.state;
   c.stop_reason = out.stop_reason;

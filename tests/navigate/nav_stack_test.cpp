@@ -347,6 +347,44 @@ TEST(NavStack, ARestartWithAnotherPlanServesThatPlanAndAnEmptyOneIsRefused) {
   EXPECT_EQ(s.navigator().order(), (std::vector<int>{3, 4}));
 }
 
+TEST(NavStack, AHeldStackTracksEveryFrameSendsExactZeroAndRampsUpWhenReleased) {
+  // An operator's pause (issue 15): perception goes on, the command is zero, and a robot that
+  // stands while held is no broken odometry.
+  NavStack s = make_stack();
+  ASSERT_GT(drive_from(s, 0.0, 2.0, true, true).back().cmd.v, 0.1);
+  s.set_held(true);
+  const auto held = drive_from(s, 2.0, 5.0, true, true);  // longer than the plausibility window
+  int frames = 0;
+  for (const auto& c : held) {
+    EXPECT_EQ(c.cmd.v, 0.0) << c.stamp;
+    EXPECT_EQ(c.cmd.omega, 0.0) << c.stamp;
+    EXPECT_EQ(c.health, InputHealth::ok) << c.stamp;
+    if (!c.frame) continue;
+    ++frames;
+    ASSERT_TRUE(c.frame->tracking) << c.stamp;
+    EXPECT_EQ(c.frame->tracking->status, track::TrackStatus::tracking) << c.stamp;
+  }
+  EXPECT_EQ(frames, 125);  // every scan of 5 s at 25 Hz
+  EXPECT_EQ(held.back().state, NavState::in_row);
+  EXPECT_FALSE(has_event(held, NavEventKind::safe_stop));
+  EXPECT_FALSE(has_event(held, NavEventKind::input_stale));
+  s.set_held(false);
+  const auto released = drive_from(s, 7.0, 2.0, true, true);
+  const double max_accel = NavStackConfig{}.limits.max_accel;
+  EXPECT_LE(released.front().cmd.v, max_accel * 0.01 + 1e-12);  // from zero, not a jump
+  EXPECT_GT(released.back().cmd.v, 0.1);
+  EXPECT_EQ(released.back().state, NavState::in_row);
+}
+
+TEST(NavStackWatchdog, AHeldStackStillReportsALidarThatStops) {
+  NavStack s = make_stack();
+  drive_from(s, 0.0, 1.0, true, true);
+  s.set_held(true);
+  const auto blind = drive_from(s, 1.0, 1.5, false, true);
+  EXPECT_EQ(blind.back().health, InputHealth::lidar_stale);
+  EXPECT_TRUE(has_event(blind, NavEventKind::input_stale));
+}
+
 TEST(NavStackWatchdog, AStateMayTakeItsBudgetButNotMore) {
   const WatchdogConfig w;
   const StateEffort exit{4.0, 5.0};  // 4 m at 0.8 m/s

@@ -139,11 +139,12 @@ TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
     if (k % 2 != 0) continue;
     cloud.header.stamp.fromSec(t);
     const rb::FrameResult held = core.on_cloud(cloud);
+    EXPECT_TRUE(held.ok) << held.error;  // tracked while paused
     EXPECT_TRUE(held.held);
-    EXPECT_TRUE(held.error.empty()) << held.error;
+    EXPECT_EQ(held.tracking.status, rownav::track::TrackStatus::tracking);
     expect_zero(held.cmd);
   }
-  // Frames processed while the robot is held still would have ended in a safe stop
+  // A stack that commanded motion while the robot is held still would have ended in a safe stop
   // (odometry_implausible, HeldStillWhileTheStackCommandsMotionEndsInASafeStop).
   EXPECT_EQ(core.navigator().state(), rownav::navigate::NavState::in_row);
   const rb::MissionAnswer a = core.start();
@@ -154,6 +155,44 @@ TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
   EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
   EXPECT_EQ(core.state_name(r.state), "in_row");
   EXPECT_GT(r.cmd.v, 0.05);
+}
+
+TEST(RowNavCore, APauseKeepsTrackingSoTheResumeStartsFromWhereTheRowsAreNow) {
+  // The robot is carried 0.15 m to the left during a pause, its odometry seeing nothing of it
+  // (lifted, or pushed with the wheels locked): the rows seen while paused place it, so the
+  // first command after the resume already steers back (issue 15: a pause no longer holds
+  // frames back from the tracker).
+  const double carried = 0.15;
+  const Scene before(0.0, 0.0), after(carried, 0.0);
+  rb::RowNavCore core(vineyard_setup());
+  Sweeps sweeps_before(before), sweeps_after(after);
+  core.set_mount(sweeps_before.mount());
+  double t = 100.0;
+  rb::FrameResult r = steps(core, sweeps_before, before, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_NEAR(r.tracking.lateral_error, 0.0, 0.05);
+  ASSERT_TRUE(core.pause().success);
+  for (int k = 0; k < 20; ++k, t += 0.1) {
+    core.on_odom(odom_msg(t, before.pose));  // the odometry does not see the carry
+    core.on_odom(odom_msg(t + 0.05, before.pose));
+    r = core.on_cloud(sweeps_after.at(t));
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_TRUE(r.held);
+    expect_zero(r.cmd);
+  }
+  EXPECT_NEAR(r.tracking.lateral_error, carried, 0.05);  // tracked while paused
+  ASSERT_TRUE(core.start().success);
+  core.on_odom(odom_msg(t, before.pose));
+  core.on_odom(odom_msg(t + 0.05, before.pose));
+  r = core.on_cloud(sweeps_after.at(t));
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_FALSE(r.held);
+  EXPECT_NEAR(r.tracking.lateral_error, carried, 0.05);
+  // The frame's command goes out with the next odometry message (the frame came at the
+  // instant of the last one: NavStack::limit keeps the first command of an instant).
+  const auto cmd = core.on_odom(odom_msg(t + 0.1, before.pose));
+  ASSERT_TRUE(cmd);
+  EXPECT_LT(cmd->omega, 0.0);  // left of the centre line: steers right at once
 }
 
 namespace {
@@ -196,6 +235,7 @@ TEST(RowNavCore, WaitsForStartAndAfterAStopStartBeginsANewMission) {
   rb::FrameResult r;
   for (int k = 0; k < 3; ++k, t += 0.1) {
     r = step(core, sweeps, scene.pose, t);
+    EXPECT_TRUE(r.ok) << r.error;  // tracked before the start
     EXPECT_TRUE(r.held);
     expect_zero(r.cmd);
   }
@@ -210,6 +250,7 @@ TEST(RowNavCore, WaitsForStartAndAfterAStopStartBeginsANewMission) {
   ASSERT_TRUE(after);
   expect_zero(*after);
   r = core.on_cloud(sweeps.at(t));
+  EXPECT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(r.held);
   expect_zero(r.cmd);
   expect_zero(core.tick(t + 0.01).cmd);

@@ -131,6 +131,14 @@ class NavStack {
   /// plan's first corridor (issue 15: resume a field from its third corridor after a battery
   /// change). Later restarts keep this plan. Throws std::invalid_argument on an empty order.
   void restart_mission(std::vector<int> order, TurnSide first_turn);
+  /// Holds the mission (an operator's pause, or a mission not started yet) or lets it go on.
+  /// While held, frames still run perception (levelling, detection, tracking, end of row, map
+  /// stage), so the row models are as current as the last frame when the mission resumes; the
+  /// navigator only holds its state (as between frames), the controller is not run, and the
+  /// command is zero (zero, not ramped down). The watchdog keeps watching: stale inputs are
+  /// reported, and the time of a hold in an odometry-closed manoeuvre counts into its budget.
+  void set_held(bool held) { held_ = held; }
+  bool held() const { return held_; }
 
   /// T_odom_base at `stamp` from the configured source (nullopt before any odometry).
   std::optional<core::Pose2> T_odom_base(double stamp) const;
@@ -185,6 +193,7 @@ class NavStack {
   double sweep_period_ = 0.0;
   double last_encoder_ = -1e300, last_gnss_ = -1e300;
   core::Twist2 nav_cmd_, sent_cmd_;  // navigator's last command, the last limited command
+  bool held_ = false;                // set_held(): perception only, command zero
   NavStackStats stats_;
   // Watchdog: input health, and the current state's start, distance driven and budget.
   InputHealth health_ = InputHealth::ok;

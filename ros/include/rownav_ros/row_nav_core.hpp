@@ -21,7 +21,7 @@ namespace rownav::ros_bridge {
 /// The answer for one LiDAR frame.
 struct FrameResult {
   bool ok = false;     ///< false: `error` says why, cmd is zero, nothing else is meaningful
-  bool held = false;   ///< not processed: the mission is not running (cmd zero, no error)
+  bool held = false;   ///< the mission is not running: tracked, but cmd zero (NavStack::set_held)
   std::string error;   ///< one line
   double stamp = 0.0;  ///< [s] frame stamp
   core::Twist2 cmd;    ///< limited command (zero on error or in a terminal state)
@@ -57,11 +57,12 @@ std::unique_ptr<navigate::NavStack> make_node_stack(const StackSetup& setup,
 /// Per-frame processing of rownav_node. Not thread-safe (call from one callback queue).
 /// Frame and odometry handlers never throw.
 ///
-/// Mission control (start / pause / stop, MissionControl): every command returned is exactly
-/// zero while the mission is not running, and LiDAR frames are held back from the stack. The
-/// stack then zeroes its own command (its watchdog: LiDAR stale), so that its
-/// odometry-plausibility check does not take the robot held still by the pause for a broken
-/// odometry (safe stop); odometry, IMU and GNSS keep coming.
+/// Mission control (start / pause / stop, MissionControl): while the mission is not running
+/// the stack is held (NavStack::set_held): every command is exactly zero, but LiDAR frames are
+/// still detected and tracked, so a resume starts from the row models of the last frame, not
+/// from models as old as the pause; the stack's watchdog goes on reporting stale inputs. (A
+/// stack that went on commanding motion while the robot stands would take the odometry for
+/// broken: safe stop, odometry_implausible.)
 class RowNavCore {
  public:
   /// Builds the detector (identity mount until set_mount), tracker, controller, end-of-row
@@ -109,8 +110,8 @@ class RowNavCore {
   /// not load or an order that does not resolve answers false in one line and starts nothing.
   /// A resume (after a pause) or a start of the mission already running ignores `node`.
   MissionAnswer start(const NodeConfig& node);
-  MissionAnswer pause() { return mission_.pause(navigator().state()); }
-  MissionAnswer stop() { return mission_.stop(navigator().state()); }
+  MissionAnswer pause();
+  MissionAnswer stop();
   const MissionControl& mission() const { return mission_; }
   /// The state to publish for the navigator state `nav` (MissionControl::state).
   std::string state_name(navigate::NavState nav) const { return mission_.state(nav); }
@@ -127,7 +128,7 @@ class RowNavCore {
   /// once frames are processed, else nothing.
   std::optional<core::Twist2> pose_received(double stamp);
   FrameResult fail(double stamp, std::string why);
-  FrameResult held(double stamp) const;
+  void hold_unless_running();  // the stack is held while the mission does not run
   /// NavStack::command at `stamp`, or at the newest instant already commanded when that is
   /// later: the watchdog timer (ros::Time::now()) may run ahead of the odometry, and a frame
   /// commanded before it was answered as a late command and never published.
