@@ -18,6 +18,7 @@ core::RobotSpec load_robot_spec(const std::filesystem::path& file) {
 
 void nav_stack_robot_limits(navigate::NavStackConfig& nav, const core::RobotSpec& robot) {
   nav.robot.width = robot.width;
+  nav.robot.length = robot.length;
   nav.robot.base_to_front = robot.base_to_front;
   nav.robot.turn = {robot.can_turn_in_place(), robot.min_turn_radius()};
   // The robot's limits are applied to every command, as a base controller would (the
@@ -30,8 +31,8 @@ void nav_stack_robot_limits(navigate::NavStackConfig& nav, const core::RobotSpec
   nav.limits.min_turn_radius = robot.min_turn_radius();
 }
 
-void nav_stack_robot(navigate::NavStackConfig& nav, const core::RobotSpec& robot,
-                     int ticks_per_rev, double lidar_rate_hz) {
+void nav_stack_robot(navigate::NavStackConfig& nav, const core::RobotSpec& robot, int ticks_per_rev,
+                     double lidar_rate_hz) {
   nav_stack_robot_limits(nav, robot);
   nav.localizer = localizer_config_for(robot, ticks_per_rev);
   nav.stack.sweep_period = 1.0 / lidar_rate_hz;

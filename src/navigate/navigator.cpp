@@ -20,6 +20,7 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(narrow_frames, "narrow_frames");
   core::check_non_negative(narrow_margin, "narrow_margin");
   core::check_non_negative(stop_distance, "stop_distance");
+  core::check_non_negative(rotation_clearance, "rotation_clearance");
   core::check_positive(obstacle_min_points, "obstacle_min_points");
   core::check_positive(blocked_timeout, "blocked_timeout");
   core::check_non_negative(blocked_speed, "blocked_speed");
@@ -74,7 +75,11 @@ NavOutput Navigator::step(const NavInput& in) {
   if (last_seen_ < 0.0) last_seen_ = in.stamp;
   // Outside a row too (issue 13, a person walking in): the person's shadow on the rows ahead
   // looked like the row end, and `exiting` then drove into it by odometry.
-  if (state_ != NavState::in_row && state_ != NavState::done && state_ != NavState::safe_stop)
+  // A turn checks the command it is about to send (turning(): a rotation in place sweeps a
+  // circle, it does not drive into the box ahead).
+  const bool turn = state_ == NavState::turning || state_ == NavState::headland;
+  if (state_ != NavState::in_row && state_ != NavState::done && state_ != NavState::safe_stop &&
+      !turn)
     if (const auto obstacle = obstacle_ahead(in)) {
       stop(StopReason::obstacle, out, in.stamp,
            *obstacle + " (" + std::string(core::enum_name(state_)) + ")");
@@ -164,6 +169,22 @@ std::optional<std::string> Navigator::obstacle_ahead(const NavInput& in) const {
   return "obstacle within " + fmt(config_.stop_distance) + " m: " + std::to_string(n) +
          " points, nearest " + fmt(nearest) + " m ahead of the front, y " + fmt(y_lo) + " to " +
          fmt(y_hi) + " m";
+}
+
+std::optional<std::string> Navigator::obstacle_in_swing(const NavInput& in) const {
+  const double front = in.robot.base_to_front, back = in.robot.length - front;
+  const double half = in.robot.width / 2.0;
+  const double reach = std::max(std::hypot(front, half), std::hypot(back, half));
+  const double r = reach + config_.rotation_clearance;
+  int n = 0;
+  double nearest = r;
+  for (const auto& p : in.obstacle_points_base.value_or(in.points_base)) {
+    const double d = p.cast<double>().norm();
+    if (std::isfinite(d) && d < r) ++n, nearest = std::min(nearest, d);
+  }
+  if (n < config_.obstacle_min_points) return std::nullopt;
+  return "obstacle within the rotating footprint's reach (" + fmt(r) + " m): " + std::to_string(n) +
+         " points, nearest " + fmt(nearest) + " m from base_link";
 }
 
 std::optional<std::string> Navigator::held_by_obstacle(const NavInput& in) {

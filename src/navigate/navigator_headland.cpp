@@ -40,6 +40,13 @@ void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out
       if (p.allFinite()) ends.push_back(T * p);
   }
   const ManoeuvreStep s = manoeuvre_->step(T, ends);
+  if (in != nullptr) {
+    // The command about to be sent decides what it could hit (issue 10).
+    const bool rotation = s.cmd.v == 0.0 && s.cmd.omega != 0.0;
+    if (const auto o = rotation ? obstacle_in_swing(*in) : obstacle_ahead(*in))
+      return stop(StopReason::obstacle, out, stamp,
+                  *o + " (" + std::string(core::enum_name(state_)) + ")");
+  }
   out.cmd = s.cmd;
   const int to = order_[leg_ + 1];
   if (s.row_passed)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -62,9 +63,9 @@ struct Drive {
 using PlaceMap = std::function<std::optional<map::Place>(const core::Pose2&)>;
 
 /// 10 Hz frames, 100 Hz control, for up to 120 s; `wrong` / `blind_entry` alter what is seen
-/// while entering; `place` is the map stage's answer.
+/// while entering; `place` is the map stage's answer; `things`: obstacle points (odom = world).
 Drive drive(int wrong_entry = 0, bool blind_entry = false, const PlaceMap& place = {},
-            const NavigatorConfig& config = {}) {
+            const NavigatorConfig& config = {}, const std::vector<Eigen::Vector2d>& things = {}) {
   Navigator nav(config, {0, 1}, TurnSide::left);
   core::Pose2 T(0.0, 0.0, 0.0);
   core::Twist2 cmd;
@@ -76,6 +77,9 @@ Drive drive(int wrong_entry = 0, bool blind_entry = false, const PlaceMap& place
     if (i % 10 == 0) {
       NavInput in = perceive(T, t, entering ? wrong_entry : 0, entering && blind_entry);
       if (place) in.place = place(T);
+      std::vector<Eigen::Vector2f> seen;
+      for (const auto& p : things) seen.push_back((T.inverse() * p).cast<float>());
+      in.obstacle_points_base = std::span<const Eigen::Vector2f>(seen);
       out = nav.step(in);
       if (out.control)  // the stack's controller: steer onto the corridor centre
         out.cmd = {out.control->speed_ref, 0.0,
@@ -131,6 +135,36 @@ TEST(NavigatorStates, ServesTwoCorridorsThroughEveryStateOfAnInPlaceTurn) {
        {NavEventKind::row_end, NavEventKind::exit_done, NavEventKind::turn_started,
         NavEventKind::turn_finished, NavEventKind::entered_corridor, NavEventKind::mission_done})
     EXPECT_NE(std::find(r.events.begin(), r.events.end(), k), r.events.end()) << core::enum_name(k);
+}
+
+/// A 4 x 3 cluster of points (2 cm apart) around `c`: a branch, a row end's canopy.
+std::vector<Eigen::Vector2d> cluster(const Eigen::Vector2d& c) {
+  std::vector<Eigen::Vector2d> out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) out.push_back(c + Eigen::Vector2d(0.02 * i, 0.02 * j));
+  return out;
+}
+
+TEST(NavigatorStates, ARotationInPlaceStopsForWhatItsFootprintSweepsNotForTheBoxAhead) {
+  // The turn rotates in place about (kRowsEnd + exit_distance, 0) from heading 0 to 90 deg.
+  // Something 0.85 m away at 45 deg crosses the stop box ahead of the front (0.45-0.95 m) but
+  // not the circle the 0.9 x 0.6 m footprint sweeps (0.54 m + 0.1 m clearance): the rotation is
+  // safe (issue 10: row ends beside the turn stopped it). Something 0.5 m away is in that circle.
+  const NavigatorConfig c;
+  const Eigen::Vector2d pivot(kRowsEnd + c.exit_distance, 0.0);
+  const Eigen::Vector2d diagonal = Eigen::Vector2d(1.0, 1.0).normalized();
+  const Drive clear = drive(0, false, {}, c, cluster(pivot + 0.85 * diagonal));
+  EXPECT_EQ(clear.last.state, NavState::done) << clear.stop_message;
+  const Drive swept = drive(0, false, {}, c, cluster(pivot + 0.5 * diagonal));
+  EXPECT_EQ(swept.last.state, NavState::safe_stop);
+  EXPECT_EQ(swept.last.stop_reason, StopReason::obstacle);
+  EXPECT_NE(swept.stop_message.find("rotating footprint"), std::string::npos) << swept.stop_message;
+  EXPECT_NE(swept.stop_message.find("(turning)"), std::string::npos) << swept.stop_message;
+  // The circle is the footprint's plus the clearance: a larger clearance reaches it.
+  NavigatorConfig wide = c;
+  wide.rotation_clearance = 0.5;
+  EXPECT_EQ(drive(0, false, {}, wide, cluster(pivot + 0.85 * diagonal)).last.state,
+            NavState::safe_stop);
 }
 
 TEST(NavigatorStates, EnteringTheWrongCorridorIsASafeStopThatSaysSo) {

@@ -86,6 +86,7 @@ struct NavEvent {
 /// Geometry and limits of the robot the navigator needs.
 struct RobotLimits {
   double width = 0.6;           ///< [m] footprint width
+  double length = 0.9;          ///< [m] footprint length (the swept circle of a rotation)
   double base_to_front = 0.45;  ///< [m] base to the front of the footprint
   TurnAbility turn;             ///< in-place turns / min radius
 };
@@ -124,7 +125,12 @@ struct NavigatorConfig {
   /// row follower's lateral error and the plants' size spread take; rownav: mean displacement
   /// 0.01-0.03 m in BENCHMARK.md, heads 15 % larger than their mean)
   double narrow_margin = 0.05;
-  double stop_distance = 0.5;    ///< [m] obstacle this close to the footprint front -> safe stop
+  double stop_distance = 0.5;  ///< [m] obstacle this close to the footprint front -> safe stop
+  /// [m] while a turn rotates the robot in place, an obstacle is a point within the circle its
+  /// footprint sweeps (the farthest corner from base_link) plus this: a rotation moves no point
+  /// of the robot forward, so the stop box ahead of the front stopped turns on the row ends the
+  /// robot was only turning beside (issue 10: 4 of the zoo's obstacle stops) (rownav)
+  double rotation_clearance = 0.1;
   int obstacle_min_points = 10;  ///< [points] in the stop box that make an obstacle
   /// [s] in a row, something in the controllers' front rectangle (which slows them down from
   /// fewer points than the stop box needs) holding the robot below blocked_speed this long ->
@@ -156,6 +162,7 @@ struct NavigatorConfig {
     v("narrow_frames", s.narrow_frames);
     v("narrow_margin", s.narrow_margin);
     v("stop_distance", s.stop_distance);
+    v("rotation_clearance", s.rotation_clearance);
     v("obstacle_min_points", s.obstacle_min_points);
     v("blocked_timeout", s.blocked_timeout);
     v("blocked_speed", s.blocked_speed);
@@ -257,6 +264,9 @@ class Navigator {
   void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
   /// The stop's message when >= obstacle_min_points points lie in the stop box, else nullopt.
   std::optional<std::string> obstacle_ahead(const NavInput& in) const;
+  /// The stop's message when >= obstacle_min_points points lie within the circle the footprint
+  /// sweeps rotating in place about base_link (plus rotation_clearance), else nullopt.
+  std::optional<std::string> obstacle_in_swing(const NavInput& in) const;
   /// The stop's message once a front obstacle has held the robot for blocked_timeout.
   std::optional<std::string> held_by_obstacle(const NavInput& in);
   /// [m] how far past the row end the exit drives (exit_distance, or the canopy's reach).
