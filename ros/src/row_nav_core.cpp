@@ -53,41 +53,21 @@ RowNavCore::RowNavCore(StackSetup setup)
       stack_(make_node_stack(setup_, Eigen::Isometry3d::Identity())),
       mission_(setup_.node.autostart),
       navsat_(setup_.node.gnss),
-      joints_(setup_.node.wheels) {
-  hold_unless_running();
-}
+      joints_(setup_.node.wheels) {}
 
 RowNavCore::~RowNavCore() = default;
 
 void RowNavCore::set_mount(const Eigen::Isometry3d& T_base_lidar) {
   // Known once, before the first frame (parameter or tf): the stack starts with it.
   stack_ = make_node_stack(setup_, T_base_lidar);
-  hold_unless_running();
   mount_set_ = true;
   started_ = false;
   last_odom_stamp_.reset();
 }
 
-void RowNavCore::hold_unless_running() {
-  stack_->set_held(!mission_.running());
-}
-
 MissionAnswer RowNavCore::start() {
   MissionAnswer a = mission_.start(navigator().state());
   if (a.new_mission) stack_->restart_mission();
-  hold_unless_running();
-  return a;
-}
-
-MissionAnswer RowNavCore::pause() {
-  MissionAnswer a = mission_.pause(navigator().state());
-  hold_unless_running();
-  return a;
-}
-
-MissionAnswer RowNavCore::stop() {
-  MissionAnswer a = mission_.stop(navigator().state());
-  hold_unless_running();
   return a;
 }
 
@@ -107,7 +87,6 @@ MissionAnswer RowNavCore::start(const NodeConfig& node) {
   setup_.mission = plan;
   setup_.order = order;
   stack_->restart_mission(std::move(order), plan.first_turn);
-  hold_unless_running();
   const std::string first = std::to_string(setup_.order.front());
   a.message += ", " + std::to_string(setup_.order.size()) + " corridors from corridor " + first;
   return a;
@@ -232,6 +211,7 @@ TickResult RowNavCore::tick(double stamp) {
 navigate::NavCommand RowNavCore::command_at(double stamp) {
   if (last_command_stamp_ && std::isfinite(stamp)) stamp = std::max(stamp, *last_command_stamp_);
   if (std::isfinite(stamp)) last_command_stamp_ = stamp;
+  stack_->set_held(!mission_.running());  // the one place the stack is commanded
   return stack_->command(stamp);
 }
 

@@ -67,6 +67,10 @@ void Navigator::stop(StopReason reason, NavOutput& out, double stamp, const std:
                         "safe stop: " + std::string(core::enum_name(reason)) + " (" + why + ")"});
 }
 
+void Navigator::stop_for_obstacle(NavOutput& out, double stamp, const std::string& where) {
+  stop(StopReason::obstacle, out, stamp, where + " (" + std::string(core::enum_name(state_)) + ")");
+}
+
 NavOutput Navigator::step(const NavInput& in) {
   NavOutput out;
   robot_ = in.robot;
@@ -75,14 +79,11 @@ NavOutput Navigator::step(const NavInput& in) {
   if (last_seen_ < 0.0) last_seen_ = in.stamp;
   // Outside a row too (issue 13, a person walking in): the person's shadow on the rows ahead
   // looked like the row end, and `exiting` then drove into it by odometry.
-  // A turn checks the command it is about to send (turning(): a rotation in place sweeps a
-  // circle, it does not drive into the box ahead).
-  const bool turn = state_ == NavState::turning || state_ == NavState::headland;
-  if (state_ != NavState::in_row && state_ != NavState::done && state_ != NavState::safe_stop &&
-      !turn)
+  // A turn checks the command it is about to send instead (turning(): a rotation in place
+  // sweeps a circle, it does not drive into the box ahead).
+  if (state_ == NavState::exiting || state_ == NavState::entering)
     if (const auto obstacle = obstacle_ahead(in)) {
-      stop(StopReason::obstacle, out, in.stamp,
-           *obstacle + " (" + std::string(core::enum_name(state_)) + ")");
+      stop_for_obstacle(out, in.stamp, *obstacle);
       return finish(std::move(out));
     }
   switch (state_) {

@@ -44,8 +44,7 @@ void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out
     // The command about to be sent decides what it could hit (issue 10).
     const bool rotation = s.cmd.v == 0.0 && s.cmd.omega != 0.0;
     if (const auto o = rotation ? obstacle_in_swing(*in) : obstacle_ahead(*in))
-      return stop(StopReason::obstacle, out, stamp,
-                  *o + " (" + std::string(core::enum_name(state_)) + ")");
+      return stop_for_obstacle(out, stamp, *o);
   }
   out.cmd = s.cmd;
   const int to = order_[leg_ + 1];

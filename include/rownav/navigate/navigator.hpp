@@ -262,6 +262,8 @@ class Navigator {
   static std::string fmt(double v);
   void start_turn(const core::Pose2& T, NavOutput& out, double stamp);
   void stop(StopReason reason, NavOutput& out, double stamp, const std::string& why);
+  /// stop(obstacle) outside a row: `where` (the check's message) and the state it came in.
+  void stop_for_obstacle(NavOutput& out, double stamp, const std::string& where);
   /// The stop's message when >= obstacle_min_points points lie in the stop box, else nullopt.
   std::optional<std::string> obstacle_ahead(const NavInput& in) const;
   /// The stop's message when >= obstacle_min_points points lie within the circle the footprint

@@ -110,8 +110,8 @@ class RowNavCore {
   /// not load or an order that does not resolve answers false in one line and starts nothing.
   /// A resume (after a pause) or a start of the mission already running ignores `node`.
   MissionAnswer start(const NodeConfig& node);
-  MissionAnswer pause();
-  MissionAnswer stop();
+  MissionAnswer pause() { return mission_.pause(navigator().state()); }
+  MissionAnswer stop() { return mission_.stop(navigator().state()); }
   const MissionControl& mission() const { return mission_; }
   /// The state to publish for the navigator state `nav` (MissionControl::state).
   std::string state_name(navigate::NavState nav) const { return mission_.state(nav); }
@@ -128,10 +128,10 @@ class RowNavCore {
   /// once frames are processed, else nothing.
   std::optional<core::Twist2> pose_received(double stamp);
   FrameResult fail(double stamp, std::string why);
-  void hold_unless_running();  // the stack is held while the mission does not run
-  /// NavStack::command at `stamp`, or at the newest instant already commanded when that is
-  /// later: the watchdog timer (ros::Time::now()) may run ahead of the odometry, and a frame
-  /// commanded before it was answered as a late command and never published.
+  /// NavStack::command at `stamp` (the stack held while the mission does not run), or at the
+  /// newest instant already commanded when that is later: the watchdog timer (ros::Time::now()) may
+  /// run ahead of the odometry, and a frame commanded before it was answered as a late command and
+  /// never published.
   navigate::NavCommand command_at(double stamp);
 
   StackSetup setup_;
