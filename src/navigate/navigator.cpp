@@ -28,6 +28,7 @@ void NavigatorConfig::validate() const {
   core::check(entry_max_depth > entry_check_depth, "entry_max_depth",
               "must be > entry_check_depth");
   core::check_range(entry_gate, 0.05, 1.0, "entry_gate");
+  core::check_range(entry_heading_gate_deg, 1.0, 90.0, "entry_heading_gate_deg");
   core::validate_nested(row_end_estimate, "row_end_estimate");
   core::check_positive(line_gain, "line_gain");
   core::check_positive(heading_gain, "heading_gain");

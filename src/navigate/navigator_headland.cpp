@@ -2,10 +2,33 @@
 // its place check (Malavazi 2018, 004 sec. 4: dead-reckoned turns often enter the wrong row).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "rownav/core/angle.hpp"
 #include "rownav/navigate/navigator.hpp"
 
 namespace rownav::navigate {
+
+namespace {
+
+/// The tracked corridor centre in odom, directed along the planned entry line.
+core::Line2 seen_centre(const track::RowTracking& tracking, const core::Pose2& T_odom_base,
+                        const core::Line2& line) {
+  core::Line2 seen = tracking.centre_line_base.transformed(T_odom_base);
+  if (seen.direction.dot(line.direction) < 0.0) seen.direction = -seen.direction;
+  return seen;
+}
+
+/// [m] how far across from the planned entry `line` the `seen` centre lies at the robot; nullopt
+/// when it runs more than `max_angle` [rad] across it: a line across the rows is no corridor,
+/// whatever its offset at the robot (issue 10).
+std::optional<double> entry_offset(const core::Line2& seen, const core::Line2& line,
+                                   const Eigen::Vector2d& robot, double max_angle) {
+  if (std::abs(core::angle_diff(seen.heading(), line.heading())) >= max_angle) return std::nullopt;
+  return std::abs(seen.signed_distance(robot) - line.signed_distance(robot));
+}
+
+}  // namespace
 
 void Navigator::start_turn(const core::Pose2& T, NavOutput& out, double stamp) {
   const CorridorChange& change = changes_[leg_];
@@ -68,28 +91,26 @@ void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out
 
 void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp) {
   const core::Line2 line = manoeuvre_->entry_line_odom();
-  // Once the target corridor's two rows are tracked and agree with the plan, steer on them
-  // rather than on the dead-reckoned entry line (004 sec. 4: dead reckoning alone misses rows);
-  // the seen line is kept in odom for the control steps between LiDAR frames.
+  // Once the target corridor's two rows are tracked and agree with the plan (along it, near it),
+  // steer on them rather than on the dead-reckoned entry line (004 sec. 4: dead reckoning alone
+  // misses rows); the seen line is kept in odom for the control steps between LiDAR frames.
+  const double max_angle = core::deg2rad(config_.entry_heading_gate_deg);
   if (in != nullptr && in->tracking.status == track::TrackStatus::tracking &&
       in->tracking.left >= 0 && in->tracking.right >= 0) {
-    core::Line2 seen = in->tracking.centre_line_base.transformed(T);
-    if (seen.direction.dot(line.direction) < 0.0) seen.direction = -seen.direction;
-    const double diff =
-        std::abs(seen.signed_distance(T.translation()) - line.signed_distance(T.translation()));
-    if (diff < config_.entry_gate * spacing_) entry_seen_ = seen;
+    const core::Line2 seen = seen_centre(in->tracking, T, line);
+    const auto off = entry_offset(seen, line, T.translation(), max_angle);
+    if (off && *off < config_.entry_gate * spacing_) entry_seen_ = seen;
   }
   out.cmd = follow_line(entry_seen_.value_or(line), T, config_.entry_speed);
   if (in == nullptr) return;
   const double depth = line.arc(T.translation()) - exit_distance_;
   const int to = order_[leg_ + 1];
-  const bool seen =
-      in->tracking.status == track::TrackStatus::tracking && in->observation.corridor.has_value();
-  if (depth >= config_.entry_check_depth && seen) {
+  const auto observed =
+      entry_offset(seen_centre(in->tracking, T, line), line, T.translation(), max_angle);
+  if (depth >= config_.entry_check_depth && observed &&
+      in->tracking.status == track::TrackStatus::tracking && in->observation.corridor) {
     // The corridor the tracker sees must be the planned one: same centre within the gate.
-    const core::Line2 observed = in->tracking.centre_line_base.transformed(T);
-    const double diff =
-        std::abs(observed.signed_distance(T.translation()) - line.signed_distance(T.translation()));
+    const double diff = *observed;
     if (diff > config_.entry_gate * spacing_)
       return stop(StopReason::place_contradicts_plan, out, stamp,
                   "corridor seen " + fmt(diff) + " m from the planned one");

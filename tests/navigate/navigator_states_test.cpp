@@ -57,25 +57,39 @@ struct Drive {
   NavOutput last;
   core::Pose2 T;  // where the robot ended
   bool reset_on_turn = false;
+  double max_entry_offset = 0.0;  // [m] farthest from corridor 1's centre while entering
 };
 
 /// The map stage's validated place at a pose (NavInput::place); empty: the stage is off.
 using PlaceMap = std::function<std::optional<map::Place>(const core::Pose2&)>;
 
+/// The tracker's centre line turned by `angle` about its point nearest the robot: the same
+/// offset at the robot, another heading (a tracker still settling after a rotation).
+void skew_centre(NavInput& in, double angle) {
+  core::Line2& c = in.tracking.centre_line_base;
+  c = core::Line2(c.project(Eigen::Vector2d::Zero()), Eigen::Rotation2Dd(angle) * c.direction);
+}
+
 /// 10 Hz frames, 100 Hz control, for up to 120 s; `wrong` / `blind_entry` alter what is seen
-/// while entering; `place` is the map stage's answer; `things`: obstacle points (odom = world).
+/// while entering, `entry_skew` [rad] the tracked centre line's heading in its first 2 s seen;
+/// `place` is the map stage's answer; `things`: obstacle points (odom = world).
 Drive drive(int wrong_entry = 0, bool blind_entry = false, const PlaceMap& place = {},
-            const NavigatorConfig& config = {}, const std::vector<Eigen::Vector2d>& things = {}) {
+            const NavigatorConfig& config = {}, const std::vector<Eigen::Vector2d>& things = {},
+            double entry_skew = 0.0) {
   Navigator nav(config, {0, 1}, TurnSide::left);
   core::Pose2 T(0.0, 0.0, 0.0);
   core::Twist2 cmd;
   Drive run;
+  int skewed = 0;  // tracked frames skewed so far
   for (int i = 1; i <= 12000; ++i) {
     const double t = i * kDt;
     const bool entering = nav.state() == NavState::entering;
+    if (entering) run.max_entry_offset = std::max(run.max_entry_offset, std::abs(T.y - kSpacing));
     NavOutput out;
     if (i % 10 == 0) {
       NavInput in = perceive(T, t, entering ? wrong_entry : 0, entering && blind_entry);
+      if (entering && skewed < 20 && in.tracking.status == track::TrackStatus::tracking)
+        skew_centre(in, entry_skew), ++skewed;
       if (place) in.place = place(T);
       std::vector<Eigen::Vector2f> seen;
       for (const auto& p : things) seen.push_back((T.inverse() * p).cast<float>());
@@ -174,6 +188,24 @@ TEST(NavigatorStates, EnteringTheWrongCorridorIsASafeStopThatSaysSo) {
     EXPECT_EQ(r.last.stop_reason, StopReason::place_contradicts_plan) << wrong;
     EXPECT_EQ(r.last.served, 1);
     EXPECT_EQ(r.last.cmd.v, 0.0);
+  }
+}
+
+TEST(NavigatorStates, AnEntrySteersOnlyOnATrackedCorridorThatRunsAlongThePlannedOne) {
+  // Issue 10 (zoo:1:36): after the rotation the tracker gave a centre line 22-30 deg across the
+  // rows through the robot; its offset at the robot passed the entry gate and the entry steered
+  // along it into a row end. A line that far off the entry heading is no corridor.
+  const NavigatorConfig c;
+  const double skew = 25.0 * M_PI / 180.0;
+  const Drive straight = drive(0, false, {}, c);
+  for (double s : {skew, -skew}) {
+    const Drive gated = drive(0, false, {}, c, {}, s);
+    EXPECT_EQ(gated.last.state, NavState::done) << gated.stop_message;
+    EXPECT_LT(gated.max_entry_offset, straight.max_entry_offset + 0.02) << s;
+    // Without the heading gate (90 deg: any line) the same entry swerves off the corridor.
+    NavigatorConfig open = c;
+    open.entry_heading_gate_deg = 90.0;
+    EXPECT_GT(drive(0, false, {}, open, {}, s).max_entry_offset, 0.15) << s;
   }
 }
 

@@ -141,7 +141,15 @@ struct NavigatorConfig {
   double entry_check_depth = 1.5;  ///< [m] into the target corridor before checking the place
   double entry_max_depth = 6.0;    ///< [m] entering without a corridor seen -> perception_lost
   RowEndEstimatorConfig row_end_estimate;  ///< row ends and spacing of the corridor being left
-  double entry_gate = 0.5;    ///< [-] x spacing: observed vs planned corridor centre, right place
+  double entry_gate = 0.5;  ///< [-] x spacing: observed vs planned corridor centre, right place
+  /// [deg] ...and the observed corridor's heading within this of the planned entry line's: a
+  /// tracked centre line is a corridor only along it. The offset alone, taken at the robot,
+  /// passed a line 22-30 deg across the rows (the tracker still settling after the rotation),
+  /// which the entry then steered on into a row end (issue 10: zoo:1:36, an obstacle stop at
+  /// the end post). Curved fields' rows turn a few degrees between neighbouring corridors' ends.
+  /// Cost: where the entry line itself is off (an exit that followed the tracker swinging at the
+  /// row ends: config/fields/maize.yaml, 21 deg), the true rows are refused (rownav)
+  double entry_heading_gate_deg = 15.0;
   double line_gain = 1.5;     ///< [1/m] lateral gain of the odometry line follower (exit / entry)
   double heading_gain = 1.5;  ///< [1/s] heading gain of the same
   ManoeuvreChoice manoeuvre = ManoeuvreChoice::automatic;  ///< headland turn
@@ -170,6 +178,7 @@ struct NavigatorConfig {
     v("entry_max_depth", s.entry_max_depth);
     v("row_end_estimate", s.row_end_estimate);
     v("entry_gate", s.entry_gate);
+    v("entry_heading_gate_deg", s.entry_heading_gate_deg);
     v("line_gain", s.line_gain);
     v("heading_gain", s.heading_gain);
     v("manoeuvre", s.manoeuvre);
