@@ -94,21 +94,20 @@ void Navigator::entering(const NavInput* in, const core::Pose2& T, NavOutput& ou
   // Once the target corridor's two rows are tracked and agree with the plan (along it, near it),
   // steer on them rather than on the dead-reckoned entry line (004 sec. 4: dead reckoning alone
   // misses rows); the seen line is kept in odom for the control steps between LiDAR frames.
-  const double max_angle = core::deg2rad(config_.entry_heading_gate_deg);
-  if (in != nullptr && in->tracking.status == track::TrackStatus::tracking &&
-      in->tracking.left >= 0 && in->tracking.right >= 0) {
+  std::optional<double> observed;  // the tracked corridor's offset from the plan, when along it
+  if (in != nullptr && in->tracking.status == track::TrackStatus::tracking) {
     const core::Line2 seen = seen_centre(in->tracking, T, line);
-    const auto off = entry_offset(seen, line, T.translation(), max_angle);
-    if (off && *off < config_.entry_gate * spacing_) entry_seen_ = seen;
+    observed =
+        entry_offset(seen, line, T.translation(), core::deg2rad(config_.entry_heading_gate_deg));
+    if (observed && *observed < config_.entry_gate * spacing_ && in->tracking.left >= 0 &&
+        in->tracking.right >= 0)
+      entry_seen_ = seen;
   }
   out.cmd = follow_line(entry_seen_.value_or(line), T, config_.entry_speed);
   if (in == nullptr) return;
   const double depth = line.arc(T.translation()) - exit_distance_;
   const int to = order_[leg_ + 1];
-  const auto observed =
-      entry_offset(seen_centre(in->tracking, T, line), line, T.translation(), max_angle);
-  if (depth >= config_.entry_check_depth && observed &&
-      in->tracking.status == track::TrackStatus::tracking && in->observation.corridor) {
+  if (depth >= config_.entry_check_depth && observed && in->observation.corridor) {
     // The corridor the tracker sees must be the planned one: same centre within the gate.
     const double diff = *observed;
     if (diff > config_.entry_gate * spacing_)

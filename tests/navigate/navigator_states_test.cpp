@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rownav/core/angle.hpp"
 #include "rownav/navigate/navigator.hpp"
 
 namespace rownav::navigate {
@@ -196,7 +197,7 @@ TEST(NavigatorStates, AnEntrySteersOnlyOnATrackedCorridorThatRunsAlongThePlanned
   // rows through the robot; its offset at the robot passed the entry gate and the entry steered
   // along it into a row end. A line that far off the entry heading is no corridor.
   const NavigatorConfig c;
-  const double skew = 25.0 * M_PI / 180.0;
+  const double skew = core::deg2rad(25.0);
   const Drive straight = drive(0, false, {}, c);
   for (double s : {skew, -skew}) {
     const Drive gated = drive(0, false, {}, c, {}, s);
