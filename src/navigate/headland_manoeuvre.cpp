@@ -28,6 +28,7 @@ void ManoeuvreConfig::validate() const {
   core::check_positive(pole_band, "pole_band");
   core::check_range(spacing_poles, 2, 1000, "spacing_poles");
   core::check_range(spacing_tolerance, 0.0, 1.0, "spacing_tolerance");
+  core::check_range(spacing_tolerance_long, 0.0, 1.0, "spacing_tolerance_long");
   core::check_range(pole_share, 0.0, 1.0, "pole_share");
 }
 
@@ -140,8 +141,9 @@ double HeadlandManoeuvre::pole_spacing() const {
   // Differences of row ends on one side of the robot are free of the nearest-point bias; the one
   // across the robot is not, the median leaves it out (track::robust_spacing).
   const double s = track::robust_spacing(std::move(ys));
-  const double r = 1.0 + config_.spacing_tolerance;
-  return s > spacing_ / r && s < spacing_ * r ? s : spacing_;
+  const double shortest = spacing_ / (1.0 + config_.spacing_tolerance);
+  const double longest = spacing_ * (1.0 + config_.spacing_tolerance_long);
+  return s > shortest && s < longest ? s : spacing_;
 }
 
 core::Twist2 HeadlandManoeuvre::follow(const TurnPrimitive& p, const core::Pose2& T_turn_base) {

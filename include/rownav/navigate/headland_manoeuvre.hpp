@@ -41,9 +41,17 @@ struct ManoeuvreConfig {
   /// shows its canopy's full width, while the in-row spacing of an opaque canopy seen from
   /// inside its corridor can be 15 % short (BENCHMARK.md, issue 10; rownav)
   int spacing_poles = 3;
-  /// [-] the row ends' spacing is used only within this ratio of the in-row spacing (either way):
-  /// beyond it the row ends are clutter or rows of another block (rownav)
+  /// [-] row ends closer together than the in-row spacing: their spacing is used down to the
+  /// in-row one / (1 + this). Clutter on the row-end line (a weed, a post, a canopy seen as two
+  /// ends) adds row ends and shortens their spacing, so the short side is the suspect one
+  /// (zoo:1:60, 1:91: 1.0 and 1.44 m from row ends for 1.55 and 2.18 m rows; rownav)
   double spacing_tolerance = 0.3;
+  /// [-] row ends farther apart than the in-row spacing: their spacing is used up to the in-row
+  /// one x (1 + this). It must pass the in-row estimate's own short bias (two corridor rows whose
+  /// canopy tops stand above the sensor show their inner top edges: zoo:1:76 measured 1.99 m in
+  /// the row for 2.94 m rows, a ratio 1.48) and refuse every other row end missed, or another
+  /// block's rows (a ratio 2) (BENCHMARK.md, issue 10; rownav)
+  double spacing_tolerance_long = 0.6;
   /// [-] a row end counts (flanks, spacing) once seen in two frames and in this share of the
   /// frames of the most-seen row end: a weed or a post glimpsed in a few frames is none
   /// (zoo:1:70: one seen twice among row ends seen 30-60 times spoilt their spacing; rownav)
@@ -59,6 +67,7 @@ struct ManoeuvreConfig {
     v("pole_band", s.pole_band);
     v("spacing_poles", s.spacing_poles);
     v("spacing_tolerance", s.spacing_tolerance);
+    v("spacing_tolerance_long", s.spacing_tolerance_long);
     v("pole_share", s.pole_share);
   }
   void validate() const;
