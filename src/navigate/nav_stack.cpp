@@ -58,6 +58,9 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
   core::check(mode != StackMode::navigate || parts_.controller != nullptr, "controller", "missing");
+  // A declared row end is withdrawn by rows that go on beyond the reach that declares one.
+  if (config_.navigator.end_withdraw_reach <= 0.0)
+    config_.navigator.end_withdraw_reach = config_.end_of_row.extent_distance;
   // Centroids of neighbouring voxels of one surface lie within two edges (end of row's shadow
   // test, issue 11).
   if (config_.end_of_row.shadow_link <= 0.0)
@@ -274,6 +277,7 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   if (report.place) in.place = report.place->place;
   // A 3D sweep: obstacles by height above the ground, not every point of the detection band.
   const auto& cloud = parts_.pipeline->last_cloud_base();
+  in.sweep_3d = !cloud.points.empty();
   std::vector<Eigen::Vector2f> tall;
   if (!cloud.points.empty()) {
     const ObstacleBandConfig band = obstacle_band(cloud);

@@ -9,6 +9,22 @@
 
 namespace rownav::navigate {
 
+namespace {
+
+/// Both followed rows tracked from beside the robot (x_min <= 0): the robot is still between
+/// rows (past a real row end they lie behind it). Sparse trees update a row every few frames
+/// only, so the rows' models, not this frame's fits, decide.
+bool rows_beside(const track::RowTracking& t) {
+  if (t.status != track::TrackStatus::tracking) return false;
+  for (const int i : {t.left, t.right}) {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) return false;
+    if (!(t.rows[static_cast<std::size_t>(i)].x_min <= 0.0)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 void NavigatorConfig::validate() const {
   core::check_positive(row_speed, "row_speed");
   core::check_positive(entry_speed, "entry_speed");
@@ -16,6 +32,7 @@ void NavigatorConfig::validate() const {
   core::check_non_negative(exit_clearance, "exit_clearance");
   core::check_positive(perception_timeout, "perception_timeout");
   core::check_non_negative(lost_rows_end_reach, "lost_rows_end_reach");
+  core::check_non_negative(end_withdraw_reach, "end_withdraw_reach");
   core::check_non_negative(arm_reach, "arm_reach");
   core::check_non_negative(narrow_frames, "narrow_frames");
   core::check_non_negative(narrow_margin, "narrow_margin");
@@ -46,6 +63,8 @@ Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, Turn
       exit_distance_(config.exit_distance),
       ends_(config.row_end_estimate) {
   config_.validate();
+  if (config_.end_withdraw_reach <= 0.0)  // NavStack passes its detector's; alone, the default's
+    config_.end_withdraw_reach = EndOfRowConfig{}.extent_distance;
   if (order_.empty()) state_ = NavState::done;
 }
 
@@ -93,7 +112,7 @@ NavOutput Navigator::step(const NavInput& in) {
       break;
     case NavState::exiting:
       ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
-      exiting(in.T_odom_base, out, in.stamp);
+      if (!withdraw_end(in, out)) exiting(in.T_odom_base, out, in.stamp);
       break;
     case NavState::turning:
     case NavState::headland:
@@ -206,6 +225,22 @@ core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& 
   const double head = core::angle_diff(T.theta, line.heading());
   const double w = -config_.line_gain * v * lat - config_.heading_gain * head;
   return {v, 0.0, std::clamp(w, -1.0, 1.0)};
+}
+
+bool Navigator::withdraw_end(const NavInput& in, NavOutput& out) {
+  if (!config_.withdraw_end || !in.sweep_3d || !rows_beside(in.tracking)) return false;
+  // Arcs along this frame's centre line (the exit's line moves with the tracked rows).
+  const core::Line2& centre = *ends_.centre();
+  const double moved = *ends_.end_arc() - centre.arc(declared_end_);
+  if (!(moved > config_.end_withdraw_reach)) return false;
+  state_ = NavState::in_row;
+  out.reset_end_of_row = true;
+  out.events.push_back({in.stamp, NavEventKind::row_end_withdrawn, order_[leg_],
+                        centre.at(*ends_.end_arc()),
+                        "rows tracked on " + fmt(moved) + " m past the row end: withdrawn"});
+  // This frame still along the exit's line (the ends are updated); the next one is in the row.
+  out.cmd = follow_line(centre, in.T_odom_base, config_.row_speed);
+  return true;
 }
 
 void Navigator::exiting(const core::Pose2& T, NavOutput& out, double stamp) {

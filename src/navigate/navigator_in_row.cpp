@@ -140,6 +140,7 @@ void Navigator::start_exit(const NavInput& in, NavOutput& out, const std::string
     ends_.set_end_arc(centre.arc(in.T_odom_base.translation()) + ahead);
   }
   const double end = *ends_.end_arc();
+  declared_end_ = centre.at(end);
   const double left = end - centre.arc(in.T_odom_base.translation()) + exit_distance_;
   exit_effort_ = StateEffort{std::max(0.0, left), std::max(0.0, left) / config_.row_speed};
   out.events.push_back(

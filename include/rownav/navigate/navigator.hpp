@@ -71,7 +71,9 @@ enum class NavEventKind : std::uint8_t {
   input_resumed,  ///< fresh inputs again: the command is released
   /// the lane between the followed rows' canopies is narrower than the robot: it will brush
   /// or crush plants however well it steers (once per corridor; issue 11)
-  narrow_corridor
+  narrow_corridor,
+  /// exiting: the followed rows go on beyond the declared row end; back in the row (issue 10)
+  row_end_withdrawn
 };
 
 /// One event.
@@ -109,6 +111,20 @@ struct NavigatorConfig {
   /// hidden (end-of-row shadow test) or a followed row's returns go on past that end for
   /// row_end_estimate.settle_distance (issue 11, rownav)
   double lost_rows_end_reach = 5.0;
+  /// Exiting: both followed rows still tracked from beside the robot, their end (the row-end
+  /// estimate) more than end_withdraw_reach past the declared one, withdraw it (back in the row,
+  /// the end-of-row detector re-armed). A gap between trees, a blind frame (a small robot pitching
+  /// on a bump) or a short-sighted moment ended the rows; rows that go on beyond the end say so.
+  /// Off, the exit followed the end ahead until its time budget ran out (issue 10: 5 of the
+  /// zoo's orchards stopped `budget_exceeded` in `exiting`; rownav). 3D sweeps only: a planar
+  /// scan's rows run on past a real row end along whatever stands in its plane beyond it (zoo:7:5
+  /// on an LMS1xx: 3.4-5.2 m past both row ends; the end of row has its own shadow and blindness
+  /// tests for planar scans)
+  bool withdraw_end = true;
+  /// [m] see withdraw_end. 0: the end-of-row detector's extent_distance, the reach within which
+  /// the followed rows' ends declare a row end (NavStack passes its own; a Navigator built alone
+  /// takes EndOfRowConfig's default) (rownav)
+  double end_withdraw_reach = 0.0;
   /// [m] a mission starts in the headland before its first corridor: the end of row is armed
   /// only once a followed row's support begins within this distance ahead of the base (the robot
   /// is at the rows). Before that, the empty ground between the robot and the row start reads as
@@ -166,6 +182,8 @@ struct NavigatorConfig {
     v("exit_clearance", s.exit_clearance);
     v("perception_timeout", s.perception_timeout);
     v("lost_rows_end_reach", s.lost_rows_end_reach);
+    v("withdraw_end", s.withdraw_end);
+    v("end_withdraw_reach", s.end_withdraw_reach);
     v("arm_reach", s.arm_reach);
     v("narrow_frames", s.narrow_frames);
     v("narrow_margin", s.narrow_margin);
@@ -198,6 +216,7 @@ struct NavInput {
   track::RowTracking tracking;                   ///< tracker output
   EndOfRowResult end_of_row;                     ///< end-of-row detector output
   std::span<const Eigen::Vector2f> points_base;  ///< 2D points, base frame (row ends, obstacles)
+  bool sweep_3d = false;  ///< the frame was a 3D sweep (false: a planar scan)
   /// Obstacle candidates by height (3D sweeps, navigate/obstacle_points.hpp); when set, the
   /// obstacle stop counts these instead of points_base
   std::optional<std::span<const Eigen::Vector2f>> obstacle_points_base;
@@ -266,6 +285,8 @@ class Navigator {
   /// in_row -> exiting at the row end (`why` starts the row_end event's message).
   void start_exit(const NavInput& in, NavOutput& out, const std::string& why);
   void exiting(const core::Pose2& T, NavOutput& out, double stamp);
+  /// exiting -> in_row when the followed rows go on beyond the declared end (withdraw_end).
+  bool withdraw_end(const NavInput& in, NavOutput& out);
   void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   static std::string fmt(double v);
@@ -290,6 +311,7 @@ class Navigator {
   std::vector<CorridorChange> changes_;
   double end_box_near_ = 0.0;
   double exit_distance_ = 0.0;  // [m] this row's exit: exit_distance or the canopy's reach
+  Eigen::Vector2d declared_end_ = Eigen::Vector2d::Zero();  // [m] odom: start_exit's row end
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
   bool at_rows_ = false;      // the end of row is armed (the robot has reached the rows)
@@ -343,7 +365,7 @@ struct rownav::core::EnumNames<rownav::navigate::StopReason> {
 template <>
 struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
   using E = rownav::navigate::NavEventKind;
-  static constexpr std::array<std::pair<E, std::string_view>, 12> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 13> values{
       {{E::row_end, "row_end"},
        {E::exit_done, "exit_done"},
        {E::turn_started, "turn_started"},
@@ -355,5 +377,6 @@ struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
        {E::mission_done, "mission_done"},
        {E::input_stale, "input_stale"},
        {E::input_resumed, "input_resumed"},
-       {E::narrow_corridor, "narrow_corridor"}}};
+       {E::narrow_corridor, "narrow_corridor"},
+       {E::row_end_withdrawn, "row_end_withdrawn"}}};
 };

@@ -1,0 +1,118 @@
+// A declared row end is withdrawn when the followed rows go on past it from beside the robot
+// (issue 10: a gap between trees or a blind frame ended the rows; the exit then followed the rows
+// on until its time budget ran out).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "rownav/navigate/navigator.hpp"
+
+namespace rownav::navigate {
+namespace {
+
+constexpr double kSpeed = 0.8;  // [m/s] along odom x
+constexpr double kStep = 0.1;   // [s] between LiDAR frames
+
+// The robot at x = kSpeed t; rows at +-0.9 m, tracked from odom x `from` to `to` (base frame
+// extents follow); the end-of-row detector says `end`.
+NavInput frame(double t, double from, double to, bool end) {
+  NavInput in;
+  in.stamp = t;
+  const double x = kSpeed * t;
+  in.T_odom_base = core::Pose2(x, 0.0, 0.0);
+  in.observation.status = core::DetectionStatus::ok;
+  in.observation.stamp = t;
+  in.observation.corridor = core::CorridorObservation{0.0, 0.0, 1.8};
+  in.tracking.status = track::TrackStatus::tracking;
+  in.tracking.row_spacing = 1.8;
+  in.tracking.centre_line_base = core::Line2({0.0, 0.0}, {1.0, 0.0});
+  for (const double y : {-0.9, 0.9}) {
+    track::TrackedRow r;
+    r.line_base = core::Line2({0.0, y}, {1.0, 0.0});
+    r.offset = y;
+    r.x_min = from - x;
+    r.x_max = to - x;
+    r.support = 40;
+    r.last_seen = t;
+    in.tracking.rows.push_back(r);
+  }
+  in.tracking.right = 0, in.tracking.left = 1;
+  in.end_of_row.end_detected = end;
+  in.sweep_3d = true;
+  return in;
+}
+
+struct Outcome {
+  std::vector<NavState> states;
+  bool withdrawn = false;
+};
+
+// 2 s in a row whose rows seem to end at x = 4 m (the detector declares the end at 1.5 s), then
+// rows tracked from `from_after` to `to_after` (odom x) for 3 s more.
+Outcome run(double from_after, double to_after, NavigatorConfig config = {}) {
+  Navigator nav{config, {0, 1}, TurnSide::left};
+  Outcome r;
+  for (double t = 0.0; t < 5.0; t += kStep) {
+    const bool before = t < 2.0;
+    const NavOutput out =
+        nav.step(frame(t, before ? -2.0 : from_after, before ? 4.0 : to_after, before && t >= 1.5));
+    r.states.push_back(out.state);
+    r.withdrawn = r.withdrawn || std::any_of(out.events.begin(), out.events.end(), [](auto& e) {
+                    return e.kind == NavEventKind::row_end_withdrawn;
+                  });
+  }
+  return r;
+}
+
+TEST(NavigatorWithdrawEnd, RowsThatGoOnFromBesideTheRobotWithdrawTheEndAndTheRobotStaysInTheRow) {
+  // A gap: the rows reappear, tracked from behind the robot to 8 m (4 m past the declared end).
+  const Outcome r = run(-2.0, 8.0);
+  EXPECT_TRUE(r.withdrawn);
+  EXPECT_NE(std::find(r.states.begin(), r.states.end(), NavState::exiting), r.states.end());
+  EXPECT_EQ(r.states.back(), NavState::in_row);
+}
+
+TEST(NavigatorWithdrawEnd, RowsAheadThatDoNotRunBesideTheRobotLeaveTheEnd) {
+  // A next block's rows beyond the headland: they start 2 m past the end, ahead of the robot.
+  const Outcome r = run(6.0, 8.0);
+  EXPECT_FALSE(r.withdrawn);
+  EXPECT_NE(r.states.back(), NavState::in_row);
+}
+
+TEST(NavigatorWithdrawEnd, AnEndThatHoldsIsNotWithdrawn) {
+  const Outcome r = run(-2.0, 4.0);
+  EXPECT_FALSE(r.withdrawn);
+  EXPECT_NE(r.states.back(), NavState::in_row);
+}
+
+TEST(NavigatorWithdrawEnd, APlanarScanKeepsItsEnd) {
+  // What stands in a scan plane beyond a row end runs the rows on (zoo:7:5): planar scans keep
+  // the exit they declared.
+  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left};
+  bool withdrawn = false;
+  for (double t = 0.0; t < 5.0; t += kStep) {
+    NavInput in = frame(t, -2.0, t < 2.0 ? 4.0 : 8.0, t >= 1.5 && t < 2.0);
+    in.sweep_3d = false;
+    for (const auto& e : nav.step(in).events)
+      withdrawn = withdrawn || e.kind == NavEventKind::row_end_withdrawn;
+  }
+  EXPECT_FALSE(withdrawn);
+  EXPECT_NE(nav.state(), NavState::in_row);
+}
+
+TEST(NavigatorWithdrawEnd, OffTheExitFollowsTheRowsOnAsBefore) {
+  NavigatorConfig c;
+  c.withdraw_end = false;
+  const Outcome r = run(-2.0, 8.0, c);
+  EXPECT_FALSE(r.withdrawn);
+  EXPECT_EQ(r.states.back(), NavState::exiting);
+}
+
+TEST(NavigatorWithdrawEnd, ReachIsValidated) {
+  NavigatorConfig c;
+  c.end_withdraw_reach = -1.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rownav::navigate
