@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "corridor_frame.hpp"
 #include "rownav/navigate/navigator.hpp"
 
 namespace rownav::navigate {
@@ -15,27 +16,7 @@ constexpr double kEnd = 6.0;    // [m] odom x where the rows end
 // The robot at x = kSpeed t, rows at +-0.9 m from x = 0 to kEnd (odom), seen when `rows`; the
 // tracker keeps the followed rows while it coasts.
 NavInput frame(double t, bool rows) {
-  NavInput in;
-  in.stamp = t;
-  const double x = kSpeed * t;
-  in.T_odom_base = core::Pose2(x, 0.0, 0.0);
-  in.observation.status = rows ? core::DetectionStatus::ok : core::DetectionStatus::no_rows;
-  if (rows) in.observation.corridor = core::CorridorObservation{0.0, 0.0, 1.8};
-  in.tracking.status = rows ? track::TrackStatus::tracking : track::TrackStatus::coasting;
-  in.tracking.row_spacing = 1.8;
-  in.tracking.centre_line_base = core::Line2({0.0, 0.0}, {1.0, 0.0});
-  for (const double y : {-0.9, 0.9}) {
-    track::TrackedRow r;
-    r.line_base = core::Line2({0.0, y}, {1.0, 0.0});
-    r.offset = y;
-    r.x_min = -x;
-    r.x_max = kEnd - x;
-    r.support = 40;
-    r.last_seen = rows ? t : 0.0;
-    in.tracking.rows.push_back(r);
-  }
-  in.tracking.right = 0, in.tracking.left = 1;
-  return in;
+  return testing::corridor_frame(t, kSpeed * t, 0.0, kEnd, rows);
 }
 
 // Drives with rows seen until the rows end 3.5 m ahead, then without; the state at `t_end`.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "corridor_frame.hpp"
 #include "rownav/navigate/navigator.hpp"
 
 namespace rownav::navigate {
@@ -13,30 +14,10 @@ namespace {
 constexpr double kSpeed = 0.8;  // [m/s] along odom x
 constexpr double kStep = 0.1;   // [s] between LiDAR frames
 
-// The robot at x = kSpeed t; rows at +-0.9 m, tracked from odom x `from` to `to` (base frame
-// extents follow); the end-of-row detector says `end`.
+// The robot at x = kSpeed t; rows at +-0.9 m, tracked from odom x `from` to `to` in a 3D sweep;
+// the end-of-row detector says `end`.
 NavInput frame(double t, double from, double to, bool end) {
-  NavInput in;
-  in.stamp = t;
-  const double x = kSpeed * t;
-  in.T_odom_base = core::Pose2(x, 0.0, 0.0);
-  in.observation.status = core::DetectionStatus::ok;
-  in.observation.stamp = t;
-  in.observation.corridor = core::CorridorObservation{0.0, 0.0, 1.8};
-  in.tracking.status = track::TrackStatus::tracking;
-  in.tracking.row_spacing = 1.8;
-  in.tracking.centre_line_base = core::Line2({0.0, 0.0}, {1.0, 0.0});
-  for (const double y : {-0.9, 0.9}) {
-    track::TrackedRow r;
-    r.line_base = core::Line2({0.0, y}, {1.0, 0.0});
-    r.offset = y;
-    r.x_min = from - x;
-    r.x_max = to - x;
-    r.support = 40;
-    r.last_seen = t;
-    in.tracking.rows.push_back(r);
-  }
-  in.tracking.right = 0, in.tracking.left = 1;
+  NavInput in = testing::corridor_frame(t, kSpeed * t, from, to, true);
   in.end_of_row.end_detected = end;
   in.sweep_3d = true;
   return in;
