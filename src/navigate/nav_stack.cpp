@@ -58,9 +58,6 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");
   core::check(mode != StackMode::navigate || parts_.controller != nullptr, "controller", "missing");
-  // A declared row end is withdrawn by rows that go on beyond the reach that declares one.
-  if (config_.navigator.end_withdraw_reach <= 0.0)
-    config_.navigator.end_withdraw_reach = config_.end_of_row.extent_distance;
   // Centroids of neighbouring voxels of one surface lie within two edges (end of row's shadow
   // test, issue 11).
   if (config_.end_of_row.shadow_link <= 0.0)
@@ -77,8 +74,8 @@ NavStack::~NavStack() = default;
 
 void NavStack::begin_mission() {
   // The constructor's plan, from where the robot stands: a fresh navigator and map stage.
-  navigator_ = std::make_unique<Navigator>(config_.navigator, order_, first_turn_,
-                                           config_.end_of_row.box_x_min);
+  navigator_ =
+      std::make_unique<Navigator>(config_.navigator, order_, first_turn_, config_.end_of_row);
   place_.reset();
   if (config_.place.enabled)
     place_ = std::make_unique<map::PlaceEstimator>(config_.place.estimator);
@@ -279,7 +276,7 @@ NavOutput NavStack::navigate_frame(double stamp, const core::Pose2& T, FrameRepo
   const auto& cloud = parts_.pipeline->last_cloud_base();
   in.sweep_3d = !cloud.points.empty();
   std::vector<Eigen::Vector2f> tall;
-  if (!cloud.points.empty()) {
+  if (in.sweep_3d) {
     const ObstacleBandConfig band = obstacle_band(cloud);
     tall = obstacle_points(cloud, parts_.pipeline->last_ground(), band, robot_top());
     drop_row_canopy(cloud, band, *report.tracking, tall);

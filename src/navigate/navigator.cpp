@@ -55,16 +55,16 @@ void NavigatorConfig::validate() const {
 }
 
 Navigator::Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
-                     double end_box_near)
+                     const EndOfRowConfig& end_of_row)
     : config_(config),
       order_(std::move(order)),
       changes_(corridor_changes(order_, first_turn)),
-      end_box_near_(end_box_near),
+      end_box_near_(end_of_row.box_x_min),
       exit_distance_(config.exit_distance),
       ends_(config.row_end_estimate) {
   config_.validate();
-  if (config_.end_withdraw_reach <= 0.0)  // NavStack passes its detector's; alone, the default's
-    config_.end_withdraw_reach = EndOfRowConfig{}.extent_distance;
+  // A declared row end is withdrawn by rows that go on beyond the reach that declares one.
+  if (config_.end_withdraw_reach <= 0.0) config_.end_withdraw_reach = end_of_row.extent_distance;
   if (order_.empty()) state_ = NavState::done;
 }
 

@@ -14,12 +14,12 @@ namespace {
 constexpr double kSpeed = 0.8;  // [m/s] along odom x
 constexpr double kStep = 0.1;   // [s] between LiDAR frames
 
-// The robot at x = kSpeed t; rows at +-0.9 m, tracked from odom x `from` to `to` in a 3D sweep;
-// the end-of-row detector says `end`.
-NavInput frame(double t, double from, double to, bool end) {
+// The robot at x = kSpeed t; rows at +-0.9 m, tracked from odom x `from` to `to`; the end-of-row
+// detector says `end`.
+NavInput frame(double t, double from, double to, bool end, bool sweep_3d) {
   NavInput in = testing::corridor_frame(t, kSpeed * t, from, to, true);
   in.end_of_row.end_detected = end;
-  in.sweep_3d = true;
+  in.sweep_3d = sweep_3d;
   return in;
 }
 
@@ -29,14 +29,14 @@ struct Outcome {
 };
 
 // 2 s in a row whose rows seem to end at x = 4 m (the detector declares the end at 1.5 s), then
-// rows tracked from `from_after` to `to_after` (odom x) for 3 s more.
-Outcome run(double from_after, double to_after, NavigatorConfig config = {}) {
+// rows tracked from `from_after` to `to_after` (odom x) for 3 s more; 3D sweeps unless told.
+Outcome run(double from_after, double to_after, NavigatorConfig config = {}, bool sweep_3d = true) {
   Navigator nav{config, {0, 1}, TurnSide::left};
   Outcome r;
   for (double t = 0.0; t < 5.0; t += kStep) {
     const bool before = t < 2.0;
-    const NavOutput out =
-        nav.step(frame(t, before ? -2.0 : from_after, before ? 4.0 : to_after, before && t >= 1.5));
+    const NavOutput out = nav.step(frame(t, before ? -2.0 : from_after, before ? 4.0 : to_after,
+                                         before && t >= 1.5, sweep_3d));
     r.states.push_back(out.state);
     r.withdrawn = r.withdrawn || std::any_of(out.events.begin(), out.events.end(), [](auto& e) {
                     return e.kind == NavEventKind::row_end_withdrawn;
@@ -69,16 +69,9 @@ TEST(NavigatorWithdrawEnd, AnEndThatHoldsIsNotWithdrawn) {
 TEST(NavigatorWithdrawEnd, APlanarScanKeepsItsEnd) {
   // What stands in a scan plane beyond a row end runs the rows on (zoo:7:5): planar scans keep
   // the exit they declared.
-  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left};
-  bool withdrawn = false;
-  for (double t = 0.0; t < 5.0; t += kStep) {
-    NavInput in = frame(t, -2.0, t < 2.0 ? 4.0 : 8.0, t >= 1.5 && t < 2.0);
-    in.sweep_3d = false;
-    for (const auto& e : nav.step(in).events)
-      withdrawn = withdrawn || e.kind == NavEventKind::row_end_withdrawn;
-  }
-  EXPECT_FALSE(withdrawn);
-  EXPECT_NE(nav.state(), NavState::in_row);
+  const Outcome r = run(-2.0, 8.0, {}, false);
+  EXPECT_FALSE(r.withdrawn);
+  EXPECT_NE(r.states.back(), NavState::in_row);
 }
 
 TEST(NavigatorWithdrawEnd, OffTheExitFollowsTheRowsOnAsBefore) {

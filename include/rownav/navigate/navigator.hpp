@@ -122,8 +122,7 @@ struct NavigatorConfig {
   /// tests for planar scans)
   bool withdraw_end = true;
   /// [m] see withdraw_end. 0: the end-of-row detector's extent_distance, the reach within which
-  /// the followed rows' ends declare a row end (NavStack passes its own; a Navigator built alone
-  /// takes EndOfRowConfig's default) (rownav)
+  /// the followed rows' ends declare a row end (the Navigator's `end_of_row`) (rownav)
   double end_withdraw_reach = 0.0;
   /// [m] a mission starts in the headland before its first corridor: the end of row is armed
   /// only once a followed row's support begins within this distance ahead of the base (the robot
@@ -255,10 +254,10 @@ struct StateEffort {
 class Navigator {
  public:
   /// `order`: resolved corridor order (resolve_order); the robot starts in order.front().
-  /// `end_box_near` [m]: near edge of the end-of-row box, the row end's distance when the
-  /// detector gives none (EndOfRowConfig::box_x_min).
+  /// `end_of_row`: the end-of-row detector's geometry: its box's near edge is the row end's
+  /// distance when the detector gives none, its extent_distance the end_withdraw_reach left 0.
   Navigator(const NavigatorConfig& config, std::vector<int> order, TurnSide first_turn,
-            double end_box_near = EndOfRowConfig{}.box_x_min);
+            const EndOfRowConfig& end_of_row = {});
 
   /// One LiDAR frame.
   NavOutput step(const NavInput& in);
