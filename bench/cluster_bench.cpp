@@ -23,7 +23,7 @@ namespace {
 using namespace rownav;
 
 struct Scene {
-  core::PointCloud cloud_base;            // OS1-64 frame, base frame
+  core::PointCloud cloud_base;             // OS1-64 frame, base frame
   std::vector<Eigen::Vector2f> scan_base;  // lms_1081 scan, base frame
 };
 
@@ -83,14 +83,14 @@ const std::vector<Eigen::Vector2f>& points() {
 }
 
 void BM_Preprocess(benchmark::State& st) {  // the preprocessing share of the full cost
-  const auto& cloud = scene().cloud_base;  // simulated before the timing
+  const auto& cloud = scene().cloud_base;   // simulated before the timing
   preprocess::Preprocessor pre(pre_config());
   for (auto _ : st) benchmark::DoNotOptimize(pre.run(cloud).points.data());
   st.counters["points"] = static_cast<double>(pre.run(cloud).points.size());
 }
 
 void BM_Preprocess_ClusterRows(benchmark::State& st) {  // full per-frame cost
-  scene();  // simulated before the timing
+  scene();                                              // simulated before the timing
   preprocess::Preprocessor pre(pre_config());
   detect::ClusterRowsDetector d;
   for (auto _ : st) {
@@ -102,7 +102,8 @@ void BM_Preprocess_ClusterRows(benchmark::State& st) {  // full per-frame cost
 
 void BM_ClusterRows(benchmark::State& st) {
   detect::ClusterRowsConfig c;
-  c.neighbour_search = st.range(0) ? detect::NeighbourSearch::kd_tree : detect::NeighbourSearch::grid;
+  c.neighbour_search =
+      st.range(0) ? detect::NeighbourSearch::kd_tree : detect::NeighbourSearch::grid;
   detect::ClusterRowsDetector d(c);
   detect::DetectorInput in;
   in.points = points();
@@ -114,7 +115,8 @@ void BM_ClusterRows(benchmark::State& st) {
 
 void BM_Dbscan(benchmark::State& st) {
   detect::Dbscan db;
-  const auto search = st.range(0) ? detect::NeighbourSearch::kd_tree : detect::NeighbourSearch::grid;
+  const auto search =
+      st.range(0) ? detect::NeighbourSearch::kd_tree : detect::NeighbourSearch::grid;
   for (auto _ : st) benchmark::DoNotOptimize(db.run(points(), 0.35, 4, search).data());
   st.counters["clusters"] = db.cluster_count();
 }
@@ -144,6 +146,7 @@ void BM_ConeRect(benchmark::State& st) {
   detect::ConeRectDetector d;
   detect::DetectorInput in;
   in.points = scene().scan_base;
+  in.planar_scan = st.range(0) != 0;  // planar: the row direction and the nearest-row step-in
   core::RowObservation o;
   for (auto _ : st) o = d.detect(in);
   st.counters["points"] = static_cast<double>(in.points.size());
@@ -157,5 +160,5 @@ BENCHMARK(BM_Preprocess_ClusterRows)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ClusterRows)->Arg(0)->Arg(1)->ArgName("kd_tree")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dbscan)->Arg(0)->Arg(1)->ArgName("kd_tree")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PclEuclideanClusters)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_ConeRect)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ConeRect)->Arg(0)->Arg(1)->ArgName("planar")->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

@@ -51,7 +51,8 @@ Sides grow_cone(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c
 Sides grow_rectangles(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c,
                       double heading, std::vector<float>& buf) {
   Sides s;
-  const float ch = static_cast<float>(std::cos(heading)), sh = static_cast<float>(std::sin(heading));
+  const float ch = static_cast<float>(std::cos(heading)),
+              sh = static_cast<float>(std::sin(heading));
   for (const int sign : {1, -1}) {
     buf.clear();
     for (const auto& p : pts) {
@@ -110,6 +111,7 @@ void ConeRectConfig::validate() const {
   core::check(rect_points >= 1, "rect_points", "must be >= 1");
   core::check_positive(max_rect_width, "max_rect_width");
   core::check_non_negative(min_width, "min_width");
+  core::validate_nested(row_direction, "row_direction");
   core::validate_nested(nearest_row, "nearest_row");
 }
 
@@ -124,8 +126,11 @@ core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
   const Sides cone = grow_cone(input.points, c, buf_);
   const bool has_cone = cone.left && cone.right;
   double heading = has_cone ? 0.5 * (*cone.left + *cone.right) : 0.0;
+  const auto sharp =
+      input.planar_scan ? row_direction(input.points, c.row_direction) : std::nullopt;
+  if (sharp) heading = *sharp;
   Sides d = grow_rectangles(input.points, c, c.align_rectangles ? heading : 0.0, buf_);
-  if (has_cone && c.compensate_offset && d.left && d.right) {  // second pass, corrected heading
+  if (!sharp && has_cone && c.compensate_offset && d.left && d.right) {  // corrected heading
     heading = corrected_heading(0.5 * (*cone.left + *cone.right), d, c);
     if (c.align_rectangles) d = grow_rectangles(input.points, c, heading, buf_);
   }
@@ -138,7 +143,7 @@ core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
   if (d.left) obs.left = d.right ? 1 : 0;
   obs.heading = heading;
   obs.confidence = (d.left ? 0.5 : 0.0) + (d.right ? 0.5 : 0.0);
-  if (!has_cone) obs.confidence *= 0.5;
+  if (!has_cone && !sharp) obs.confidence *= 0.5;
   if (d.left && d.right) {
     const double half = 0.5 * (*d.left - *d.right);
     core::CorridorObservation corr;
@@ -147,9 +152,9 @@ core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
     corr.width = *d.left + *d.right;
     obs.corridor = corr;
   }
-  obs.status = obs.rows.empty()                ? core::DetectionStatus::no_rows
-               : (obs.corridor && has_cone)    ? core::DetectionStatus::ok
-                                               : core::DetectionStatus::degraded;
+  obs.status = obs.rows.empty()                        ? core::DetectionStatus::no_rows
+               : (obs.corridor && (has_cone || sharp)) ? core::DetectionStatus::ok
+                                                       : core::DetectionStatus::degraded;
   return obs;
 }
 

@@ -14,6 +14,7 @@ using namespace pearl_detail;
 
 void PearlConfig::validate() const {
   core::validate_nested(nearest_row, "nearest_row");
+  core::validate_nested(row_direction, "row_direction");
   core::check_positive(outlier_cost, "outlier_cost");
   core::check_non_negative(outlier_penalty, "outlier_penalty");
   core::check_non_negative(smoothness, "smoothness");
@@ -173,7 +174,9 @@ core::RowObservation PearlDetector::detect(const DetectorInput& input) {
   last_energy_ = std::isfinite(best_energy) ? best_energy : 0.0;
   finish_models(cfg, st.pts, outlier_cost, best_labels, best_models);
   auto obs = make_observation(cfg, st.pts, input.stamp, best_labels, best_models);
-  // Issue 11: a sparse near row pays its label cost poorly (nearest_row.hpp).
+  // Issue 11: a short fit off the rows' heading wins the pick (row_direction.hpp); a sparse near
+  // row pays its label cost poorly (nearest_row.hpp).
+  if (input.planar_scan) keep_rows_along_direction(obs, st.pts, cfg.row_direction, cfg.lookahead);
   step_in_nearest_rows(obs, st.pts, cfg.nearest_row, !input.planar_scan, cfg.lookahead);
   return obs;
 }

@@ -44,7 +44,7 @@ TEST(Pearl, NamesFollowTheVariant) {
   PearlConfig c;
   auto count = [&](std::string_view, auto&) { ++fields; };
   PearlConfig::fields(c, count);
-  EXPECT_EQ(fields, 27);  // + nearest_row, planar_label_cost (issue 11)
+  EXPECT_EQ(fields, 28);  // + nearest_row, planar_label_cost, row_direction (issue 11)
   PearlVariant v{};
   EXPECT_TRUE(core::enum_from_name("opal", v));
   EXPECT_EQ(v, PearlVariant::opal);

@@ -10,6 +10,7 @@
 #include "rownav/core/config_fields.hpp"
 #include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
+#include "rownav/detect/row_direction.hpp"
 
 namespace rownav::detect {
 
@@ -23,11 +24,11 @@ struct ConeRectConfig {
   /// put the far row inside the wrong half of the cone (Bertoglio 2023: "the maximum angle that
   /// can be recovered depends on ... the length of the cone sides").
   double side_length = 2.0;
-  int cone_points = 3;       ///< [-] points inside the cone that stop a side from growing (N)
+  int cone_points = 3;  ///< [-] points inside the cone that stop a side from growing (N)
   double max_cone_half_angle_deg = 75.0;  ///< [deg] a side that reaches this finds no row
-  double rect_x_min = -0.5;   ///< [m] rectangles' extent along x (robot frame)
-  double rect_x_max = 1.5;    ///< [m]
-  int rect_points = 3;        ///< [-] points inside a rectangle that stop it from growing (N)
+  double rect_x_min = -0.5;               ///< [m] rectangles' extent along x (robot frame)
+  double rect_x_max = 1.5;                ///< [m]
+  int rect_points = 3;          ///< [-] points inside a rectangle that stop it from growing (N)
   double max_rect_width = 2.5;  ///< [m] a rectangle that reaches this finds no row
   /// [m] both sides found closer together than this is clutter (weeds, open field), no row
   double min_width = 0.3;
@@ -38,12 +39,17 @@ struct ConeRectConfig {
   /// row distances d_l, d_r, each side stops near asin(d / L) from the row direction, so the
   /// centre line is biased by (asin(d_l / L) - asin(d_r / L)) / 2 (ours, from the geometry).
   bool compensate_offset = true;
+  /// 2D scans: the heading is the rows' sharpest projection direction (row_direction.hpp), not
+  /// the cone's (ours, issue 11). The cone stops at its N-th return: where the near row is
+  /// sparse within side_length it finds no side (no heading, 0 is taken) or stops on a weed
+  /// (25-35 deg off), 55 of the 57 gross errors of tests/detect/nearest_row_2d_test.cpp. The
+  /// cone stays the heading of projected 3D clouds and the fallback when no direction is sharp.
+  RowDirectionConfig row_direction;
   /// 2D scans: a row band between the robot and a rectangle's hit, over the whole visible row
-  /// (not only the rectangle's x window), sets that side (issue 11). Off by default: the bands
-  /// are searched along the cone's heading, which is off by several degrees at +-10 deg of yaw
-  /// (the cone's capture range, see side_length), and on the issue-11 frames it made the gross
-  /// error rate worse (8.4 % -> 10.0 %, BENCHMARK.md "Issue 11").
-  NearestRowConfig nearest_row{.enabled = false};
+  /// (not only the rectangle's x window), sets that side (issue 11). The rectangles see x in
+  /// [rect_x_min, rect_x_max] only: a near row with fewer than N returns there (a gap, a sparse
+  /// canopy) lets them grow on to the row behind.
+  NearestRowConfig nearest_row;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -57,6 +63,7 @@ struct ConeRectConfig {
     v("min_width", s.min_width);
     v("align_rectangles", s.align_rectangles);
     v("compensate_offset", s.compensate_offset);
+    v("row_direction", s.row_direction);
     v("nearest_row", s.nearest_row);
   }
   /// Throws std::invalid_argument naming the offending field.

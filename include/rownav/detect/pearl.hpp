@@ -27,6 +27,7 @@
 #include "rownav/core/config_fields.hpp"
 #include "rownav/detect/nearest_row.hpp"
 #include "rownav/detect/row_detector.hpp"
+#include "rownav/detect/row_direction.hpp"
 
 namespace rownav::detect {
 
@@ -103,6 +104,8 @@ struct PearlConfig {
   double lookahead = 0.5;
   /// 2D scans: a row band between the robot and a corridor row becomes that side's row (issue 11)
   NearestRowConfig nearest_row;
+  /// 2D scans: rows off the frame's sharpest direction are dropped before the pick (issue 11)
+  RowDirectionConfig row_direction;
   std::uint64_t seed = 1;  ///< random sampling seed: same seed, same result
 
   template <class S, class V>
@@ -134,6 +137,7 @@ struct PearlConfig {
     v("lookahead", s.lookahead);
     v("seed", s.seed);
     v("nearest_row", s.nearest_row);
+    v("row_direction", s.row_direction);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
