@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 
 namespace rownav::detect {
 namespace {
@@ -85,6 +86,26 @@ core::RowLine side_line(double heading, double signed_dist, const ConeRectConfig
   return r;
 }
 
+// The row behind a side's inner edge: the returns from the edge to `depth` behind it set the
+// reported row's extent along x and its support. The edge is the rectangle's N-th nearest return,
+// so the band starts half a depth in front of it (the N - 1 nearer ones).
+void row_extent(std::span<const Eigen::Vector2f> pts, double depth, core::RowLine& r) {
+  const Eigen::Vector2d n(-r.line.direction.y(), r.line.direction.x());
+  const double edge = n.dot(r.line.point), out = edge >= 0.0 ? 1.0 : -1.0;
+  int count = 0;
+  double x_min = 0.0, x_max = 0.0;
+  for (const auto& p : pts) {
+    if (!p.allFinite()) continue;
+    const double behind = out * (n.dot(p.cast<double>()) - edge);
+    if (behind < -0.5 * depth || behind > depth) continue;
+    x_min = count ? std::min(x_min, double(p.x())) : double(p.x());
+    x_max = count ? std::max(x_max, double(p.x())) : double(p.x());
+    ++count;
+  }
+  if (count == 0) return;  // not reached: the edge is a return
+  r.x_min = x_min, r.x_max = x_max, r.support = count;
+}
+
 // Issue 11: the rectangles see only x in [rect_x_min, rect_x_max]; where the near row has fewer
 // than N returns there (a 2D scan through a sparse canopy) they grow on to the row behind. A row
 // band between the robot and a hit, over the whole visible row, sets that side at the band's
@@ -111,6 +132,7 @@ void ConeRectConfig::validate() const {
   core::check(rect_points >= 1, "rect_points", "must be >= 1");
   core::check_positive(max_rect_width, "max_rect_width");
   core::check_non_negative(min_width, "min_width");
+  core::check_positive(row_depth, "row_depth");
   core::validate_nested(row_direction, "row_direction");
   core::validate_nested(nearest_row, "nearest_row");
 }
@@ -139,6 +161,9 @@ core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
   if (d.left && d.right && *d.left + *d.right < c.min_width) d = {};  // clutter, not a corridor
   if (d.right) obs.rows.push_back(side_line(heading, -*d.right, c));
   if (d.left) obs.rows.push_back(side_line(heading, *d.left, c));
+  const double depth =
+      d.left && d.right ? std::min(c.row_depth, 0.5 * (*d.left + *d.right)) : c.row_depth;
+  for (auto& r : obs.rows) row_extent(input.points, depth, r);
   if (d.right) obs.right = 0;
   if (d.left) obs.left = d.right ? 1 : 0;
   obs.heading = heading;

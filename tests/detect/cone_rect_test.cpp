@@ -103,6 +103,31 @@ TEST(ConeRect, WeedsAndNoise) {
   EXPECT_LT(many.offset, 0.5);  // 0.42 m measured: weeds are taken for the row
 }
 
+// The end of row reads a row's x_max: the side rows reach as far as their returns, not the
+// rectangles' window (rows reported as ending at rect_x_max declared a row end at every frame).
+TEST(ConeRect, SideRowsSpanTheirReturnsNotTheRectangleWindow) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> end(2.5, 9.0), spacing(1.5, 3.0), heading(-8.0, 8.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    test::SyntheticRows s;
+    s.spacing = spacing(rng);
+    s.heading = heading(rng) * kDeg;
+    s.x_min = -1.0;
+    s.x_max = end(rng);
+    s.seed = 40 + static_cast<std::uint64_t>(trial);
+    ConeRectDetector d;
+    const auto obs = d.detect(points_input(test::make_rows(s).points));
+    ASSERT_EQ(obs.rows.size(), 2u) << "trial " << trial;
+    for (const auto& r : obs.rows) {
+      // Along the rows the returns end at s.x_max; in x that is within the row's half width x
+      // sin(heading) of it.
+      EXPECT_NEAR(r.x_max, s.x_max * std::cos(s.heading), 0.35) << "trial " << trial;
+      EXPECT_LT(r.x_min, -0.5);
+      EXPECT_GT(r.support, 20);
+    }
+  }
+}
+
 TEST(ConeRect, DegenerateInputs) {
   ConeRectDetector d;
   EXPECT_EQ(d.detect(points_input({})).status, core::DetectionStatus::no_rows);

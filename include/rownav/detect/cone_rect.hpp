@@ -39,6 +39,13 @@ struct ConeRectConfig {
   /// row distances d_l, d_r, each side stops near asin(d / L) from the row direction, so the
   /// centre line is biased by (asin(d_l / L) - asin(d_r / L)) / 2 (ours, from the geometry).
   bool compensate_offset = true;
+  /// [m] returns from a side's inner edge to this far behind it are that side's row: its
+  /// reported extent (x_min / x_max) and support. The rectangles measure only the first N returns
+  /// in [rect_x_min, rect_x_max]; reported as the row's extent, that window read as a row ending
+  /// 1.5 m ahead and the end of row fired at the corridor's start (every closed-loop run failed,
+  /// BENCHMARK.md issue 11). Half the 0.3-0.6 m canopy wall of a VSP vineyard plus its shoots;
+  /// capped at half the corridor width measured in the frame
+  double row_depth = 0.4;
   /// 2D scans: the heading is the rows' sharpest projection direction (row_direction.hpp), not
   /// the cone's (ours, issue 11). The cone stops at its N-th return: where the near row is
   /// sparse within side_length it finds no side (no heading, 0 is taken) or stops on a weed
@@ -61,6 +68,7 @@ struct ConeRectConfig {
     v("rect_points", s.rect_points);
     v("max_rect_width", s.max_rect_width);
     v("min_width", s.min_width);
+    v("row_depth", s.row_depth);
     v("align_rectangles", s.align_rectangles);
     v("compensate_offset", s.compensate_offset);
     v("row_direction", s.row_direction);
@@ -74,9 +82,10 @@ struct ConeRectConfig {
 /// (d_left - d_right) / 2, heading (the cone centre angle) and width d_left + d_right, measured
 /// to the inner edges of the rows' canopies (what the rectangles touch), not to row centres.
 /// rows holds the found sides as lines through the rectangle hits along the corridor heading
-/// (inner canopy edges, support = the points counted); status ok with both sides, degraded
-/// with one side or without a cone (no corridor with one side), no_rows with none or when the
-/// sides are closer than min_width. Confidence: 0.5 a side found, halved without the cone.
+/// (inner canopy edges; extent and support: the returns up to row_depth behind that edge); status
+/// ok with both sides, degraded with one side or without a cone (no corridor with one side),
+/// no_rows with none or when the sides are closer than min_width. Confidence: 0.5 a side found,
+/// halved without the cone.
 class ConeRectDetector : public RowDetector {
  public:
   /// Validates the config (throws std::invalid_argument).
