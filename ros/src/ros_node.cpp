@@ -264,7 +264,12 @@ void RosNode::publish_stop() {
 void RosNode::publish_frame(const FrameResult& r, const ros::Time& stamp) {
   if (!r.ok && !r.held) ROS_WARN_THROTTLE(1.0, "rownav_node: stopping: %s", r.error.c_str());
   publish_cmd(r.cmd);
-  for (const auto& e : r.events) ROS_INFO("rownav_node: %s", e.text.c_str());
+  for (const auto& e : r.events) {
+    if (e.kind == navigate::NavEventKind::moved_while_held)
+      ROS_WARN("rownav_node: %s", e.text.c_str());  // an operator is to look before resuming
+    else
+      ROS_INFO("rownav_node: %s", e.text.c_str());
+  }
   publish_state(r.state);
   if (!r.ok) return;
   geometry_msgs::Vector3Stamped t;

@@ -340,6 +340,7 @@ NavCommand NavStack::command(double stamp) {
       out = navigate_frame(stamp, *T, report);
     else
       out = navigator_->hold(stamp, T.value_or(core::Pose2()), nav_cmd_);
+    watch_hold(report, out, stamp);
     last_frame_stamp_ = report.stamp;
     report.latency = std::chrono::duration<double>(Clock::now() - t0).count();
     if (report.place)

@@ -4,6 +4,7 @@
 // ticks_per_rev 1 the robot stayed `exiting` for 1,766 s and drove 878 m outside the field).
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "rownav/navigate/nav_stack.hpp"
@@ -33,8 +34,8 @@ std::optional<std::string> budget_exceeded(const StateEffort& planned, double el
   const double time_budget = w.budget_factor * planned.time + w.budget_time_margin;
   const double dist_budget = w.budget_factor * planned.distance + w.budget_distance_margin;
   if (elapsed <= time_budget && distance <= dist_budget) return std::nullopt;
-  return "took " + fixed(elapsed) + " s / " + fixed(distance) + " m, budget " +
-         fixed(time_budget) + " s / " + fixed(dist_budget) + " m";
+  return "took " + fixed(elapsed) + " s / " + fixed(distance) + " m, budget " + fixed(time_budget) +
+         " s / " + fixed(dist_budget) + " m";
 }
 
 void NavStack::watch_inputs(NavCommand& c, NavOutput& out, double stamp) {
@@ -58,14 +59,15 @@ void NavStack::watch_inputs(NavCommand& c, NavOutput& out, double stamp) {
   }
   // Events on transitions only, once inputs have been fresh (not while starting up).
   if (h != InputHealth::ok && inputs_seen_)
-    out.events.push_back({stamp, NavEventKind::input_stale, out.corridor, Eigen::Vector2d::Zero(),
-                          std::string("watchdog: ") +
-                              (h == InputHealth::lidar_stale ? "LiDAR " + fixed(c.lidar_age)
-                                                             : "odometry " + fixed(c.odometry_age)) +
-                              " s old, command zero"});
+    out.events.push_back(
+        {stamp, NavEventKind::input_stale, out.corridor, Eigen::Vector2d::Zero(),
+         std::string("watchdog: ") +
+             (h == InputHealth::lidar_stale ? "LiDAR " + fixed(c.lidar_age)
+                                            : "odometry " + fixed(c.odometry_age)) +
+             " s old, command zero"});
   if (h == InputHealth::ok && inputs_seen_)
-    out.events.push_back({stamp, NavEventKind::input_resumed, out.corridor,
-                          Eigen::Vector2d::Zero(), "watchdog: inputs fresh again"});
+    out.events.push_back({stamp, NavEventKind::input_resumed, out.corridor, Eigen::Vector2d::Zero(),
+                          "watchdog: inputs fresh again"});
   inputs_seen_ |= h == InputHealth::ok;
   health_ = h;
 }
@@ -79,7 +81,8 @@ void NavStack::watch_budget(NavOutput& out, double stamp, const std::optional<co
     phase_last_T_ = T;
     return;
   }
-  if (T && phase_last_T_) phase_distance_ += (T->translation() - phase_last_T_->translation()).norm();
+  if (T && phase_last_T_)
+    phase_distance_ += (T->translation() - phase_last_T_->translation()).norm();
   if (T) phase_last_T_ = T;
   if (!phase_effort_) return;
   if (const auto why = budget_exceeded(*phase_effort_, stamp - phase_start_, phase_distance_,
@@ -107,6 +110,39 @@ void NavStack::watch_odometry(NavOutput& out, double stamp, const std::optional<
   safe_stop(out, StopReason::odometry_implausible, stamp,
             "commanded " + fixed(commanded_sum_) + " m in " + fixed(w.plausibility_window) +
                 " s, odometry moved " + fixed(measured_sum_) + " m");
+}
+
+void NavStack::set_held(bool held) {
+  // A new hold watches from the rows as the last frame tracked them: a robot carried off at the
+  // pause's first instant is as moved as one pushed later.
+  if (held && !held_) hold_reference_ = last_tracked_, hold_reported_ = false;
+  held_ = held;
+}
+
+void NavStack::watch_hold(const FrameReport& report, NavOutput& out, double stamp) {
+  const bool tracked = report.tracking && report.tracking->status == track::TrackStatus::tracking;
+  if (tracked)
+    last_tracked_ = Eigen::Vector2d(report.tracking->lateral_error, report.tracking->heading_error);
+  if (!held_ || hold_reported_) return;
+  const auto& w = config_.stack.watchdog;
+  std::string why;
+  if (tracked) {
+    if (!hold_reference_) hold_reference_ = last_tracked_;
+    const Eigen::Vector2d moved = *last_tracked_ - *hold_reference_;
+    if (std::abs(moved.x()) > w.held_move_lateral ||
+        std::abs(moved.y()) > w.held_move_heading_deg * std::numbers::pi / 180.0)
+      why = "moved " + fixed(100.0 * moved.x()) + " cm sideways and " +
+            fixed(moved.y() * 180.0 / std::numbers::pi) + " deg";
+  } else if (hold_reference_) {
+    why = "the rows tracked when the hold began are lost";
+  }
+  if (why.empty()) return;
+  hold_reported_ = true;
+  out.events.push_back({stamp, NavEventKind::moved_while_held, out.corridor,
+                        Eigen::Vector2d::Zero(),
+                        "held: " + why +
+                            " (left +): check the robot stands in the planned "
+                            "corridor before resuming"});
 }
 
 void NavStack::safe_stop(NavOutput& out, StopReason reason, double stamp, const std::string& why) {

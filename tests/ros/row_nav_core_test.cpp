@@ -140,6 +140,8 @@ TEST(RowNavCore, APausedMissionSendsZeroAndResumesWithoutASafeStop) {
     cloud.header.stamp.fromSec(t);
     const rb::FrameResult held = core.on_cloud(cloud);
     EXPECT_TRUE(held.ok) << held.error;  // tracked while paused
+    for (const auto& e : held.events)    // standing still: nothing to report
+      EXPECT_NE(e.kind, rownav::navigate::NavEventKind::moved_while_held) << e.text;
     EXPECT_TRUE(held.held);
     EXPECT_EQ(held.tracking.status, rownav::track::TrackStatus::tracking);
     expect_zero(held.cmd);
@@ -172,6 +174,7 @@ TEST(RowNavCore, APauseKeepsTrackingSoTheResumeStartsFromWhereTheRowsAreNow) {
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_NEAR(r.tracking.lateral_error, 0.0, 0.05);
   ASSERT_TRUE(core.pause().success);
+  int told = 0;  // moved_while_held events: the carry is reported while paused, once
   for (int k = 0; k < 20; ++k, t += 0.1) {
     core.on_odom(odom_msg(t, before.pose));  // the odometry does not see the carry
     core.on_odom(odom_msg(t + 0.05, before.pose));
@@ -179,8 +182,11 @@ TEST(RowNavCore, APauseKeepsTrackingSoTheResumeStartsFromWhereTheRowsAreNow) {
     ASSERT_TRUE(r.ok) << r.error;
     EXPECT_TRUE(r.held);
     expect_zero(r.cmd);
+    for (const auto& e : r.events)
+      told += e.kind == rownav::navigate::NavEventKind::moved_while_held;
   }
   EXPECT_NEAR(r.tracking.lateral_error, carried, 0.05);  // tracked while paused
+  EXPECT_EQ(told, 1);
   ASSERT_TRUE(core.start().success);
   core.on_odom(odom_msg(t, before.pose));
   core.on_odom(odom_msg(t + 0.05, before.pose));

@@ -137,7 +137,10 @@ class NavStack {
   /// navigator only holds its state (as between frames), the controller is not run, and the
   /// command is zero (zero, not ramped down). The watchdog keeps watching: stale inputs are
   /// reported, and the time of a hold in an odometry-closed manoeuvre counts into its budget.
-  void set_held(bool held) { held_ = held; }
+  /// A hold also watches the rows: when they say the robot moved (StackConfig::watchdog
+  /// held_move_lateral / held_move_heading_deg) or are lost, the event moved_while_held is sent
+  /// once per hold.
+  void set_held(bool held);
   bool held() const { return held_; }
 
   /// T_odom_base at `stamp` from the configured source (nullopt before any odometry).
@@ -171,6 +174,7 @@ class NavStack {
   void watch_inputs(NavCommand& c, NavOutput& out, double stamp);
   void watch_budget(NavOutput& out, double stamp, const std::optional<core::Pose2>& T);
   void watch_odometry(NavOutput& out, double stamp, const std::optional<core::Pose2>& T);
+  void watch_hold(const FrameReport& report, NavOutput& out, double stamp);
   void safe_stop(NavOutput& out, StopReason reason, double stamp, const std::string& why);
 
   NavStackConfig config_;
@@ -208,6 +212,10 @@ class NavStack {
   std::deque<Motion> motion_;
   double commanded_sum_ = 0.0, measured_sum_ = 0.0;
   std::optional<core::Pose2> motion_last_T_;
+  // Hold: the tracked offset and heading to the corridor of the last tracked frame, as they were
+  // when the hold began, and whether the move was reported.
+  std::optional<Eigen::Vector2d> last_tracked_, hold_reference_;
+  bool hold_reported_ = false;
 };
 
 }  // namespace rownav::navigate

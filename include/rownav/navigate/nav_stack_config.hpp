@@ -57,6 +57,15 @@ struct WatchdogConfig {
   double plausibility_window = 2.0;    ///< [s]
   double plausibility_distance = 1.0;  ///< [m]
   double plausibility_ratio = 0.25;    ///< [-]
+  /// While held (NavStack::set_held: paused, or not started), the tracked offset from the corridor
+  /// centre moved this far from where it was when the hold began: event moved_while_held (the
+  /// robot was pushed or carried; a resume steers to the centre of whatever corridor is tracked
+  /// then, issue 15). Three times the offset's wander for a standing robot (3.3 cm in 10 s on a
+  /// 2D scan with 2 cm range noise, tests/navigate/nav_stack_hold_test.cpp), and under a third
+  /// of a 0.75 m row crop's half corridor, so a push into the next corridor is reported before
+  /// the tracker takes that corridor for its own
+  double held_move_lateral = 0.1;       ///< [m]
+  double held_move_heading_deg = 10.0;  ///< [deg] the same for the heading to the corridor
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -68,6 +77,8 @@ struct WatchdogConfig {
     v("plausibility_window", s.plausibility_window);
     v("plausibility_distance", s.plausibility_distance);
     v("plausibility_ratio", s.plausibility_ratio);
+    v("held_move_lateral", s.held_move_lateral);
+    v("held_move_heading_deg", s.held_move_heading_deg);
   }
   void validate() const {
     core::check_positive(lidar_timeout, "lidar_timeout");
@@ -78,12 +89,14 @@ struct WatchdogConfig {
     core::check_positive(plausibility_window, "plausibility_window");
     core::check_positive(plausibility_distance, "plausibility_distance");
     core::check_range(plausibility_ratio, 0.0, 1.0, "plausibility_ratio");
+    core::check_positive(held_move_lateral, "held_move_lateral");
+    core::check_range(held_move_heading_deg, 0.1, 180.0, "held_move_heading_deg");
   }
 };
 
 /// NavStack's own settings (input handling between the sensors and the chain).
 struct StackConfig {
-  StackMode mode = StackMode::navigate;              ///< how far the chain runs
+  StackMode mode = StackMode::navigate;                ///< how far the chain runs
   OdometryInput odometry = OdometryInput::wheels_imu;  ///< pose source
   /// Level each 3D sweep by the gravity the IMU measured during it (a rolling base shifts a row
   /// seen at height h by h sin(roll); rownav, BENCHMARK.md issue 4)
@@ -98,17 +111,17 @@ struct StackConfig {
   double imu_history = 1.0;  ///< [s] IMU samples kept for levelling
   /// external odometry: the yaw rate from the gyro when a sample is fresher than gyro_max_age
   bool gyro_yaw_rate = true;
-  double gyro_max_age = 0.5;        ///< [s]
-  double odometry_history = 2.0;    ///< [s] external poses kept
-  double max_extrapolation = 0.2;   ///< [s] external pose extrapolated past the newest one
-  double command_period = 0.01;     ///< [s] acceleration-limit step of the first command (100 Hz)
-  double max_frame_dt = 1.0;        ///< [s] controller dt is clamped to this (a gap in frames)
+  double gyro_max_age = 0.5;       ///< [s]
+  double odometry_history = 2.0;   ///< [s] external poses kept
+  double max_extrapolation = 0.2;  ///< [s] external pose extrapolated past the newest one
+  double command_period = 0.01;    ///< [s] acceleration-limit step of the first command (100 Hz)
+  double max_frame_dt = 1.0;       ///< [s] controller dt is clamped to this (a gap in frames)
   /// Obstacle rectangle of the controllers' slow-down (Bertoglio 2023 sec. II-B); its width and
   /// front x are the robot's (no margin: the corridor's canopy faces are within 0.1 m of a
   /// robot in a narrow row), an obstacle is >= 3 points after preprocessing (a lone shoot or
   /// weed blade stalled the demo at zero speed with 1 point and a 0.1 m margin).
   control::FrontRectConfig front = {.margin = 0.0, .min_points = 3};
-  WatchdogConfig watchdog;  ///< stale inputs and state budgets
+  WatchdogConfig watchdog;       ///< stale inputs and state budgets
   ObstacleBandConfig obstacles;  ///< which 3D points are obstacles (stop, slow-down)
   /// A planar scan's points in front of the robot are obstacles (stop, slow-down). false: the
   /// robot drives over what its scanner sees between the rows: a weeding robot whose scanner is
@@ -158,8 +171,8 @@ struct NavStackConfig {
   StackConfig stack;          ///< input handling
   PlaceConfig place;          ///< the map stage: place, key locations (Emmi 2021; off by default)
   // From the robot file (io::nav_stack_robot), not from this YAML file:
-  RobotLimits robot;                  ///< footprint and turn ability
-  control::VelocityLimits limits;     ///< applied to every command, as a base controller would
+  RobotLimits robot;                    ///< footprint and turn ability
+  control::VelocityLimits limits;       ///< applied to every command, as a base controller would
   localize::LocalizerConfig localizer;  ///< wheel odometry model and EKF noise
 
   template <class S, class V>

@@ -73,7 +73,10 @@ enum class NavEventKind : std::uint8_t {
   /// or crush plants however well it steers (once per corridor; issue 11)
   narrow_corridor,
   /// exiting: the followed rows go on beyond the declared row end; back in the row (issue 10)
-  row_end_withdrawn
+  row_end_withdrawn,
+  /// held (paused, or not started): the tracked rows say the robot moved (pushed, carried) or
+  /// are lost; once per hold, so an operator checks the robot before resuming (issue 15)
+  moved_while_held
 };
 
 /// One event.
@@ -364,7 +367,7 @@ struct rownav::core::EnumNames<rownav::navigate::StopReason> {
 template <>
 struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
   using E = rownav::navigate::NavEventKind;
-  static constexpr std::array<std::pair<E, std::string_view>, 13> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 14> values{
       {{E::row_end, "row_end"},
        {E::exit_done, "exit_done"},
        {E::turn_started, "turn_started"},
@@ -377,5 +380,6 @@ struct rownav::core::EnumNames<rownav::navigate::NavEventKind> {
        {E::input_stale, "input_stale"},
        {E::input_resumed, "input_resumed"},
        {E::narrow_corridor, "narrow_corridor"},
-       {E::row_end_withdrawn, "row_end_withdrawn"}}};
+       {E::row_end_withdrawn, "row_end_withdrawn"},
+       {E::moved_while_held, "moved_while_held"}}};
 };
