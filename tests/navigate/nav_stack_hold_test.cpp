@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "common/planar_scan.hpp"
 #include "common/synthetic_rows.hpp"
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/detector_registry.hpp"
@@ -16,24 +17,6 @@
 
 namespace rownav::navigate {
 namespace {
-
-/// A 270 deg planar scan of `points` (base = LiDAR frame): the nearest return per beam.
-core::Scan2D scan_of(const std::vector<Eigen::Vector2f>& points, double stamp) {
-  core::Scan2D s;
-  s.stamp = stamp;
-  s.angle_min = -0.75 * std::numbers::pi;
-  s.angle_increment = 0.25 * std::numbers::pi / 180.0;
-  s.range_min = 0.05;
-  s.range_max = 20.0;
-  s.ranges.assign(1081, std::numeric_limits<float>::infinity());
-  for (const auto& p : points) {
-    const long i = std::lround((std::atan2(p.y(), p.x()) - s.angle_min) / s.angle_increment);
-    if (i < 0 || i >= 1081) continue;
-    auto& r = s.ranges[static_cast<std::size_t>(i)];
-    r = std::min(r, p.norm());
-  }
-  return s;
-}
 
 /// The 2D stack a weeding robot runs: parallel_lines, model_filter, lookahead PID.
 NavStack make_stack() {
@@ -61,8 +44,8 @@ std::vector<NavCommand> stand(NavStack& s, double t0, double seconds, Push push,
       r.offset = -push(t);  // the rows move right as the robot moves left
       r.noise = 0.02;
       r.seed = static_cast<std::uint64_t>(k);
-      s.on_scan(
-          scan_of(rows ? test::make_rows(r).points : std::vector<Eigen::Vector2f>{}, t - 0.04));
+      s.on_scan(test::planar_scan(rows ? test::make_rows(r).points : std::vector<Eigen::Vector2f>{},
+                                  t - 0.04));
     }
     out.push_back(s.command(t));
   }

@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "common/planar_scan.hpp"
 #include "map/map_scene.hpp"
 #include "rownav/io/detector_registry.hpp"
 #include "rownav/navigate/nav_stack.hpp"
@@ -61,24 +62,6 @@ std::pair<core::PointCloud, std::vector<map::PointLabel>> cloud_of(const map::te
   return out;
 }
 
-/// A 270 deg planar scan of base-frame points: the nearest return per beam.
-core::Scan2D scan_of(const std::vector<Eigen::Vector3f>& points, double stamp) {
-  core::Scan2D s;
-  s.stamp = stamp;
-  s.angle_min = -0.75 * std::numbers::pi;
-  s.angle_increment = 0.25 * std::numbers::pi / 180.0;
-  s.range_min = 0.05;
-  s.range_max = 20.0;
-  s.ranges.assign(1081, std::numeric_limits<float>::infinity());
-  for (const auto& p : points) {
-    const long i = std::lround((std::atan2(p.y(), p.x()) - s.angle_min) / s.angle_increment);
-    if (i < 0 || i >= 1081) continue;
-    auto& r = s.ranges[static_cast<std::size_t>(i)];
-    r = std::min(r, p.head<2>().norm());
-  }
-  return s;
-}
-
 enum class Input { labelled_cloud, unlabelled_cloud, scan };
 
 /// Drives the middle lane from x = -3 to 15 at 0.5 m/s, a frame every 0.1 s; every command.
@@ -93,7 +76,7 @@ std::vector<NavCommand> drive(NavStack& s, Input input) {
     s.on_odometry({t, T, core::Twist2{kStep / kPeriod, 0.0}});
     const auto f = map::test::scan(sc, T, rng);
     if (input == Input::scan) {
-      s.on_scan(scan_of(f.points, t));
+      s.on_scan(test::planar_scan(f.points, t));
     } else {
       auto [cloud, labels] = cloud_of(f, t);
       if (input == Input::unlabelled_cloud) labels.clear();
@@ -219,9 +202,9 @@ TEST(GeometricLabel, PointsOfADetectedRowAreCropTheRestGround) {
   left.half_width = 0.25;
   obs.rows.push_back(left);
   constexpr double kMargin = 0.1;
-  EXPECT_EQ(geometric_label({2.0f, 1.1f}, obs, kMargin), map::PointLabel::crop);   // centre
-  EXPECT_EQ(geometric_label({2.0f, 1.4f}, obs, kMargin), map::PointLabel::crop);   // outer edge
-  EXPECT_EQ(geometric_label({2.0f, 0.8f}, obs, kMargin), map::PointLabel::crop);   // inner edge
+  EXPECT_EQ(geometric_label({2.0f, 1.1f}, obs, kMargin), map::PointLabel::crop);    // centre
+  EXPECT_EQ(geometric_label({2.0f, 1.4f}, obs, kMargin), map::PointLabel::crop);    // outer edge
+  EXPECT_EQ(geometric_label({2.0f, 0.8f}, obs, kMargin), map::PointLabel::crop);    // inner edge
   EXPECT_EQ(geometric_label({2.0f, 1.5f}, obs, kMargin), map::PointLabel::ground);  // past it
   EXPECT_EQ(geometric_label({2.0f, 0.6f}, obs, kMargin), map::PointLabel::ground);  // corridor
   EXPECT_EQ(geometric_label({2.0f, 1.7f}, obs, kMargin), map::PointLabel::ground);  // beyond

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "common/nav_doubles.hpp"
+#include "common/planar_scan.hpp"
 #include "common/synthetic_rows.hpp"
 #include "rownav/io/controller_registry.hpp"
 #include "rownav/io/detector_registry.hpp"
@@ -14,24 +15,6 @@
 
 namespace rownav::navigate {
 namespace {
-
-/// A 270 deg planar scan of `points` (base = LiDAR frame): the nearest return per beam.
-core::Scan2D scan_of(const std::vector<Eigen::Vector2f>& points, double stamp) {
-  core::Scan2D s;
-  s.stamp = stamp;
-  s.angle_min = -0.75 * std::numbers::pi;
-  s.angle_increment = 0.25 * std::numbers::pi / 180.0;
-  s.range_min = 0.05;
-  s.range_max = 20.0;
-  s.ranges.assign(1081, std::numeric_limits<float>::infinity());
-  for (const auto& p : points) {
-    const long i = std::lround((std::atan2(p.y(), p.x()) - s.angle_min) / s.angle_increment);
-    if (i < 0 || i >= 1081) continue;
-    auto& r = s.ranges[static_cast<std::size_t>(i)];
-    r = std::min(r, p.norm());
-  }
-  return s;
-}
 
 /// Two corridors of rows 1.8 m apart, robot centred; optional obstacle points ahead.
 std::vector<Eigen::Vector2f> corridor_points(std::uint64_t seed, double obstacle_x = -1.0) {
@@ -69,7 +52,8 @@ std::vector<NavCommand> drive(NavStack& s, double v, bool encoders = true, doubl
       s.on_encoders({t, ticks, ticks, 0.0});
     }
     if (k % 4 == 0)
-      s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k), obstacle_x), t - 0.04));
+      s.on_scan(
+          test::planar_scan(corridor_points(static_cast<std::uint64_t>(k), obstacle_x), t - 0.04));
     out.push_back(s.command(t));
   }
   return out;
@@ -103,7 +87,8 @@ TEST(NavStack, ASecondCommandAtTheSameInstantKeepsTheAccelerationLimit) {
       const auto ticks = static_cast<std::int64_t>(std::llround(0.5 * t * ticks_per_m));
       s.on_encoders({t, ticks, ticks, 0.0});
     }
-    if (k % 4 == 0) s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
+    if (k % 4 == 0)
+      s.on_scan(test::planar_scan(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
     // Twice per instant, as an adapter whose timer and frame callbacks share a stamp.
     const NavCommand first = s.command(t), second = s.command(t);
     EXPECT_EQ(second.cmd.v, first.cmd.v) << t;
@@ -178,10 +163,10 @@ TEST(NavStack, LateDuplicateAndNonFiniteSamplesAreDroppedAndCounted) {
   imu.stamp = 2.0;
   s.on_imu(imu);
   imu.stamp = 1.9;
-  s.on_imu(imu);                                 // older than the newest
-  s.on_scan(scan_of(corridor_points(1), 1.0));   // older than the last frame
-  s.on_scan(scan_of(corridor_points(1), 1.96));  // the last frame again
-  const NavCommand late = s.command(1.5);        // older than the last command
+  s.on_imu(imu);                                           // older than the newest
+  s.on_scan(test::planar_scan(corridor_points(1), 1.0));   // older than the last frame
+  s.on_scan(test::planar_scan(corridor_points(1), 1.96));  // the last frame again
+  const NavCommand late = s.command(1.5);                  // older than the last command
   EXPECT_EQ(s.stats().dropped_encoders, before.dropped_encoders + 2);
   EXPECT_EQ(s.stats().dropped_imu, before.dropped_imu + 1);
   EXPECT_EQ(s.stats().imu, before.imu + 1);
@@ -254,7 +239,7 @@ std::vector<NavCommand> drive_from(NavStack& s, double t0, double seconds, bool 
       s.on_encoders({t, ticks, ticks, 0.0});
     }
     if (scans && k % 4 == 0)
-      s.on_scan(scan_of(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
+      s.on_scan(test::planar_scan(corridor_points(static_cast<std::uint64_t>(k)), t - 0.04));
     out.push_back(s.command(t));
   }
   return out;
