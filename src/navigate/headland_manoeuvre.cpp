@@ -17,6 +17,83 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+struct WeightedEnd {
+  double y, weight;  // [m] across the rows, frames seen
+};
+
+// Residual of y from the lattice a + k s (k whole).
+double off_lattice(double y, double a, double s) {
+  const double k = std::round((y - a) / s);
+  return std::abs(y - a - k * s);
+}
+
+// How well the lattice a + k s explains the row ends: each end on it (within gate x s) adds its
+// weight, the closer the more; each end off it between the lattice's first and last end, and
+// each lattice point there with no end, takes `penalty` x (its, a mean end's) weight away. A
+// half spacing puts every end on its lattice but leaves every other point empty; a double one
+// leaves every other end off it: either scores below zero from four ends on.
+double lattice_score(const std::vector<WeightedEnd>& ends, double a, double s, double gate,
+                     double penalty) {
+  double score = 0.0, mean = 0.0, k_min = 1e9, k_max = -1e9;
+  std::vector<long> on;
+  for (const auto& e : ends) {
+    mean += e.weight / static_cast<double>(ends.size());
+    const double r = off_lattice(e.y, a, s);
+    if (r >= gate * s) continue;
+    const long k = std::lround((e.y - a) / s);
+    on.push_back(k);
+    k_min = std::min(k_min, double(k)), k_max = std::max(k_max, double(k));
+    score += e.weight * (1.0 - r / (gate * s));
+  }
+  for (const auto& e : ends) {
+    const double k = (e.y - a) / s;
+    if (off_lattice(e.y, a, s) >= gate * s && k > k_min && k < k_max) score -= penalty * e.weight;
+  }
+  std::sort(on.begin(), on.end());
+  on.erase(std::unique(on.begin(), on.end()), on.end());
+  if (!on.empty())
+    score -= penalty * mean * static_cast<double>(on.back() - on.front() + 1 - long(on.size()));
+  return score;
+}
+
+// The row ends' spacing as the lattice that best explains them (lattice_score, the ends weighted
+// by the frames each was seen in). The candidates are every difference of two row ends divided
+// by 1-3 (rows missing between them) within [lo, hi]; the winner is refined by least squares
+// over its row ends. A thing on the row-end line between two rows, or an end seen across the
+// robot with its nearest-point bias, lies off the lattice, where a median of neighbour
+// differences took the two halves of a split spacing for two spacings (zoo:1:61). nullopt: no
+// lattice scores above zero, or under min_ends on it.
+std::optional<double> lattice_spacing(const std::vector<WeightedEnd>& ends, double lo, double hi,
+                                      double gate, double penalty, int min_ends) {
+  double best = 0.0, best_s = 0.0, best_a = 0.0;
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    for (std::size_t j = i + 1; j < ends.size(); ++j)
+      for (int k = 1; k <= 3; ++k) {
+        const double c = std::abs(ends[i].y - ends[j].y) / k;
+        if (!(c > lo && c < hi)) continue;
+        const double score = lattice_score(ends, ends[i].y, c, gate, penalty);
+        if (score > best) best = score, best_s = c, best_a = ends[i].y;
+      }
+  if (!(best > 0.0)) return std::nullopt;
+  // The median over neighbouring ends on the lattice of their difference per spacing: the one
+  // across the robot carries the nearest-point bias of both ends, the median leaves it out.
+  std::vector<std::pair<double, double>> on;  // (k, y)
+  for (const auto& e : ends)
+    if (off_lattice(e.y, best_a, best_s) < gate * best_s)
+      on.emplace_back(std::round((e.y - best_a) / best_s), e.y);
+  if (static_cast<int>(on.size()) < min_ends) return std::nullopt;
+  std::sort(on.begin(), on.end());
+  std::vector<double> d;
+  for (std::size_t i = 1; i < on.size(); ++i)
+    if (on[i].first > on[i - 1].first)
+      d.push_back((on[i].second - on[i - 1].second) / (on[i].first - on[i - 1].first));
+  if (d.empty()) return best_s;
+  std::sort(d.begin(), d.end());
+  const std::size_t n = d.size();
+  const double s = n % 2 ? d[n / 2] : 0.5 * (d[n / 2 - 1] + d[n / 2]);
+  return s > lo && s < hi ? s : best_s;
+}
+
 }  // namespace
 
 void ManoeuvreConfig::validate() const {
@@ -30,6 +107,8 @@ void ManoeuvreConfig::validate() const {
   core::check_range(spacing_tolerance, 0.0, 1.0, "spacing_tolerance");
   core::check_range(spacing_tolerance_long, 0.0, 1.0, "spacing_tolerance_long");
   core::check_range(pole_share, 0.0, 1.0, "pole_share");
+  core::check_range(lattice_gate, 0.01, 0.5, "lattice_gate");
+  core::check_non_negative(lattice_penalty, "lattice_penalty");
 }
 
 HeadlandManoeuvre::HeadlandManoeuvre(const ManoeuvreConfig& config, const TurnPlan& plan,
@@ -134,16 +213,15 @@ bool HeadlandManoeuvre::counted(const Pole& p) const {
 }
 
 double HeadlandManoeuvre::pole_spacing() const {
-  std::vector<double> ys;
+  std::vector<WeightedEnd> ends;
   for (const auto& p : poles_)
-    if (counted(p)) ys.push_back(p.y);
-  if (static_cast<int>(ys.size()) < config_.spacing_poles) return spacing_;
-  // Differences of row ends on one side of the robot are free of the nearest-point bias; the one
-  // across the robot is not, the median leaves it out (track::robust_spacing).
-  const double s = track::robust_spacing(std::move(ys));
+    if (counted(p)) ends.push_back({p.y, static_cast<double>(p.n)});
+  if (static_cast<int>(ends.size()) < config_.spacing_poles) return spacing_;
   const double shortest = spacing_ / (1.0 + config_.spacing_tolerance);
   const double longest = spacing_ * (1.0 + config_.spacing_tolerance_long);
-  return s > shortest && s < longest ? s : spacing_;
+  return lattice_spacing(ends, shortest, longest, config_.lattice_gate, config_.lattice_penalty,
+                         config_.spacing_poles)
+      .value_or(spacing_);
 }
 
 core::Twist2 HeadlandManoeuvre::follow(const TurnPrimitive& p, const core::Pose2& T_turn_base) {

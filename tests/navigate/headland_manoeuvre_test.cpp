@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -115,6 +116,27 @@ TEST(HeadlandManoeuvre, RowEndSpacingCountsAMissingRowEndAsTwoSpacings) {
   ASSERT_TRUE(m.done());
   EXPECT_NEAR(m.pole_spacing(), scene.spacing, 0.05 * scene.spacing);
   EXPECT_NEAR(m.target_y(), scene.spacing, 0.15);
+}
+
+// zoo:1:61 (2.12 m rows, in-row spacing 1.84 m), the second turn, to the right: the row ends
+// merged when the target was re-anchored (y in the turn frame, frames seen), replayed. The
+// corridor's far row end across the robot read 0.42 (its nearest point, 0.64 m towards the
+// robot) and something on the row-end line at -2.21 split the target's two flanks (-1.10,
+// -3.20) in two; the median of the row ends' differences read 1.51 m, the flanks became that
+// thing and the near row end, and the robot entered 0.47 m off towards a post (issue 10).
+TEST(HeadlandManoeuvre, SomethingMidwayBetweenTwoRowEndsDoesNotHalveTheirSpacing) {
+  const std::vector<std::pair<double, int>> seen{{0.42, 75},  {-1.10, 64}, {-2.21, 24},
+                                                 {-3.20, 65}, {-5.27, 47}, {-7.35, 41}};
+  HeadlandManoeuvre m({}, {TurnKind::in_place, 0.0}, core::Pose2(), 1, TurnSide::right, 1.84, 1.0);
+  const core::Pose2 T(0.5, -1.08, -std::numbers::pi / 2.0);  // in the headland, abeam
+  for (int frame = 0; frame < 75; ++frame) {
+    std::vector<Eigen::Vector2d> ends;
+    for (const auto& [y, n] : seen)
+      if (frame < n) ends.emplace_back(0.0, y);
+    m.step(T, ends);
+  }
+  EXPECT_NEAR(m.pole_spacing(), 2.12, 0.1);
+  EXPECT_NEAR(m.target_y(), -2.15, 0.15);  // midway between -1.10 and -3.20
 }
 
 TEST(HeadlandManoeuvre, AFlankIsTheRowEndNearestItsExpectedPlaceNotAWeedInTheGate) {

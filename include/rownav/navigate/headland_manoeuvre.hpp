@@ -56,6 +56,16 @@ struct ManoeuvreConfig {
   /// frames of the most-seen row end: a weed or a post glimpsed in a few frames is none
   /// (zoo:1:70: one seen twice among row ends seen 30-60 times spoilt their spacing; rownav)
   double pole_share = 0.1;
+  /// [-] x spacing: a row end this close to a whole number of spacings from another supports
+  /// that spacing (the row ends' spacing is the lattice the most of them lie on). Half the
+  /// anchor gate: a row end's across position scatters by a few centimetres over the frames,
+  /// and a thing midway between two rows (zoo:1:61) is half a spacing off (rownav)
+  double lattice_gate = 0.15;
+  /// [-] a row end off the lattice, or a lattice point with no row end, between the lattice's
+  /// first and last row end costs this many (its, a mean row end's) weights: 2 puts a half or a
+  /// double of the true spacing below zero from four row ends on, and keeps one missing row end
+  /// (a dead plant at the end) within the lattice (rownav)
+  double lattice_penalty = 2.0;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -69,6 +79,8 @@ struct ManoeuvreConfig {
     v("spacing_tolerance", s.spacing_tolerance);
     v("spacing_tolerance_long", s.spacing_tolerance_long);
     v("pole_share", s.pole_share);
+    v("lattice_gate", s.lattice_gate);
+    v("lattice_penalty", s.lattice_penalty);
   }
   void validate() const;
 };
