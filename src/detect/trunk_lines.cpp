@@ -22,8 +22,8 @@ void rotate(const std::vector<TrunkCentre>& trunks, double gamma, std::vector<Ro
   const double c = std::cos(gamma), s = std::sin(gamma);
   out.clear();
   for (const auto& t : trunks)
-    out.push_back({c * t.centre.x() + s * t.centre.y(), -s * t.centre.x() + c * t.centre.y(),
-                   t.points});
+    out.push_back(
+        {c * t.centre.x() + s * t.centre.y(), -s * t.centre.x() + c * t.centre.y(), t.points});
 }
 
 /// Heading vote: trunk pairs that line up along gamma (Gaussian kernel across it).
@@ -107,6 +107,7 @@ void TrunkLinesConfig::validate() const {
   core::check_positive(crown_window, "crown_window");
   core::check_non_negative(min_crown_points, "min_crown_points");
   core::validate_nested(crowns, "crowns");
+  core::check_non_negative(planar_min_length_per_start, "planar_min_length_per_start");
 }
 
 TrunkLinesDetector::TrunkLinesDetector(const TrunkLinesConfig& config)
@@ -122,6 +123,12 @@ core::RowObservation TrunkLinesDetector::detect(const DetectorInput& input) {
     trunk_rows(finder_.find(*input.cloud, h), input, obs);
   }
   if (config_.crown_fallback) add_crown_rows(input, obs);
+  if (input.planar_scan)  // a short piece far ahead is a local object, not a row
+    std::erase_if(obs.rows, [&](const core::RowLine& r) {
+      const double start =
+          r.x_min * r.x_max > 0.0 ? std::min(std::abs(r.x_min), std::abs(r.x_max)) : 0.0;
+      return r.x_max - r.x_min < config_.planar_min_length_per_start * start;
+    });
   finalize_observation(obs, config_.lookahead);
   return obs;
 }
@@ -133,9 +140,9 @@ void TrunkLinesDetector::trunk_rows(const std::vector<TrunkCentre>& trunks,
   const double sigma = 0.5 * config_.line_tolerance;
   const double coarse = config_.heading_step_deg * kDegToRad;
   double score = 0.0;
-  double g = search(trunks, config_.heading_min_deg * kDegToRad,
-                    config_.heading_max_deg * kDegToRad, coarse, sigma,
-                    config_.min_pair_distance, score, r);
+  double g =
+      search(trunks, config_.heading_min_deg * kDegToRad, config_.heading_max_deg * kDegToRad,
+             coarse, sigma, config_.min_pair_distance, score, r);
   g = search(trunks, g - coarse, g + coarse, config_.fine_step_deg * kDegToRad, sigma,
              config_.min_pair_distance, score, r);
   rotate(trunks, g, r);
@@ -160,9 +167,8 @@ void TrunkLinesDetector::trunk_rows(const std::vector<TrunkCentre>& trunks,
       support.push_back(trunks[i].centre.cast<float>());
     }
     const core::Line2 line(mean / static_cast<double>(idx.size()), dir);
-    if (config_.require_crown &&
-        crown_points(input, line, config_.trunks.z_max, config_.crown_window) <
-            config_.min_crown_points)
+    if (config_.require_crown && crown_points(input, line, config_.trunks.z_max,
+                                              config_.crown_window) < config_.min_crown_points)
       continue;  // a line of weeds or posts: no canopy above it
     core::RowLine row = make_row_line(line, support);
     row.support = points;

@@ -42,10 +42,6 @@ struct KnownMiss {
 constexpr double kMissTolerance = 0.006;  // [-] about 4 of the 640 frames
 constexpr KnownMiss kKnownMisses[] = {
     {"baseline", 0.0156, 0.0141, "fixed |y| <= 0.75 m box, no corridor in 91 % of the frames"},
-    // An orchard 3D detector: on a 2D scan (no trunk band) only its crown fallback runs, the
-    // hough_skew crowns() preset without the nearest-row check (issue 10): short row pieces far
-    // ahead (x 7-10 m) between the robot and a corridor row win the pick.
-    {"trunk_lines", 0.0094, 0.0188, "3D orchard detector: on 2D scans only its crown fallback"},
 };
 
 // Every scenario: 2 presets x 4 spacings x thin / thick canopy, seeded (the frames are the same

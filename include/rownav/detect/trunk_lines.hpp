@@ -31,26 +31,32 @@ namespace rownav::detect {
 
 /// Parameters of TrunkLinesDetector. Defaults: orchards (rows 3-7 m apart, trees 1-6 m apart).
 struct TrunkLinesConfig {
-  TrunkCentresConfig trunks;        ///< trunk band and clustering
-  double heading_min_deg = -20.0;   ///< [deg] smallest heading searched (as Nehme 2021 Fig. 6)
-  double heading_max_deg = 20.0;    ///< [deg] largest heading searched
-  double heading_step_deg = 0.5;    ///< [deg] coarse heading step of the vote
-  double fine_step_deg = 0.05;      ///< [deg] fine step, +- one coarse step around the best
+  TrunkCentresConfig trunks;       ///< trunk band and clustering
+  double heading_min_deg = -20.0;  ///< [deg] smallest heading searched (as Nehme 2021 Fig. 6)
+  double heading_max_deg = 20.0;   ///< [deg] largest heading searched
+  double heading_step_deg = 0.5;   ///< [deg] coarse heading step of the vote
+  double fine_step_deg = 0.05;     ///< [deg] fine step, +- one coarse step around the best
   /// [m] trunks of one row lie within this of its line: planting jitter (+-0.1-0.2 m) plus the
   /// trunk radius; also the kernel width of the heading vote
   double line_tolerance = 0.3;
-  int min_trunks = 2;            ///< [-] fewer trunks on a line: not a row
-  double min_row_length = 1.0;   ///< [m] along the row from first to last trunk (tree >= 1 m apart)
+  int min_trunks = 2;           ///< [-] fewer trunks on a line: not a row
+  double min_row_length = 1.0;  ///< [m] along the row from first to last trunk (tree >= 1 m apart)
   /// [m] trunk pairs closer than this along the heading do not vote (no direction information)
   double min_pair_distance = 0.8;
-  bool require_crown = true;     ///< a trunk row needs canopy points above its line
+  bool require_crown = true;  ///< a trunk row needs canopy points above its line
   /// [m] crown points within this of a trunk line count as its crown: crowns are >= 1 m wide
   double crown_window = 0.5;
-  int min_crown_points = 5;      ///< [-] fewer: a line of weeds or posts, dropped
-  bool crown_fallback = true;    ///< without trunk rows, the crown detector's rows
+  int min_crown_points = 5;    ///< [-] fewer: a line of weeds or posts, dropped
+  bool crown_fallback = true;  ///< without trunk rows, the crown detector's rows
   /// the crown detector (fallback), on every point (preset HoughSkewConfig::crowns())
   HoughSkewConfig crowns = HoughSkewConfig::crowns();
-  double lookahead = 0.0;        ///< [m] nearest row each side judged at this x (line_fit.hpp)
+  double lookahead = 0.0;  ///< [m] nearest row each side judged at this x (line_fit.hpp)
+  /// [-] planar scans: a row that starts ahead of (or behind) the robot is at least this fraction
+  /// of that distance long, as a row band of the nearest-row check (nearest_row.hpp
+  /// min_length_per_start): the crown fallback's short pieces 5-10 m ahead (weeds, a post, the
+  /// scan plane touching a bump) stood between the robot and a corridor row and won the pick
+  /// (tests/detect/nearest_row_2d_test.cpp; issue 11)
+  double planar_min_length_per_start = 0.5;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -69,6 +75,7 @@ struct TrunkLinesConfig {
     v("crown_fallback", s.crown_fallback);
     v("crowns", s.crowns);
     v("lookahead", s.lookahead);
+    v("planar_min_length_per_start", s.planar_min_length_per_start);
   }
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
