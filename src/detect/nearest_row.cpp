@@ -54,8 +54,7 @@ std::optional<NearBand> densest_band(const std::vector<Across>& in, double lo, d
   if (t_max - t_min < c.min_length) return std::nullopt;
   // A row seen from the robot runs from where it comes into view to the range limit; a short
   // piece far ahead is a local object (min_length_per_start).
-  const double start = t_min * t_max > 0.0 ? std::min(std::abs(t_min), std::abs(t_max)) : 0.0;
-  if (t_max - t_min < c.min_length_per_start * start) return std::nullopt;
+  if (short_for_its_start(t_min, t_max, c.min_length_per_start)) return std::nullopt;
   const auto line = fit_line_tls(band.points);
   if (!line ||
       std::abs(line->direction.dot(f.n)) > std::sin(c.max_angle_deg * std::numbers::pi / 180.0))

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "rownav/detect/line_fit.hpp"
+#include "rownav/detect/nearest_row.hpp"
 
 namespace rownav::detect {
 
@@ -125,9 +126,7 @@ core::RowObservation TrunkLinesDetector::detect(const DetectorInput& input) {
   if (config_.crown_fallback) add_crown_rows(input, obs);
   if (input.planar_scan)  // a short piece far ahead is a local object, not a row
     std::erase_if(obs.rows, [&](const core::RowLine& r) {
-      const double start =
-          r.x_min * r.x_max > 0.0 ? std::min(std::abs(r.x_min), std::abs(r.x_max)) : 0.0;
-      return r.x_max - r.x_min < config_.planar_min_length_per_start * start;
+      return short_for_its_start(r.x_min, r.x_max, config_.planar_min_length_per_start);
     });
   finalize_observation(obs, config_.lookahead);
   return obs;

@@ -13,7 +13,9 @@
 /// first points met) and Malavazi 2018 sec. 2.3 (the data-filter boxes beside the robot) all take
 /// the corridor rows as the nearest ones; this check restores that choice after the fit.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <vector>
@@ -71,6 +73,15 @@ struct NearestRowConfig {
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
 };
+
+/// True when a stretch along the rows from `lo` to `hi` [m] (robot at 0) is shorter than
+/// `fraction` x the distance at which it starts: a row seen from the robot runs from where it
+/// comes into view to the range limit, a short piece far ahead is a local object
+/// (NearestRowConfig::min_length_per_start). A stretch across the robot is never short for it.
+inline bool short_for_its_start(double lo, double hi, double fraction) {
+  const double start = lo * hi > 0.0 ? std::min(std::abs(lo), std::abs(hi)) : 0.0;
+  return hi - lo < fraction * start;
+}
 
 /// A row band found between the robot and a reported corridor row.
 struct NearBand {
