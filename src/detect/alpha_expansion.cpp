@@ -1,23 +1,12 @@
 #include "rownav/detect/alpha_expansion.hpp"
 
-#include <boost/graph/boykov_kolmogorov_max_flow.hpp>
-#include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <cmath>
+
+#include "rownav/detect/max_flow.hpp"
 
 namespace rownav::detect {
 
 namespace {
-
-// Compressed-sparse-row graph rebuilt for every move: edge properties live in flat vectors
-// (no allocation per edge), unlike adjacency_list.
-using Graph = boost::compressed_sparse_row_graph<boost::directedS>;
-using Edge = boost::graph_traits<Graph>::edge_descriptor;
-
-/// One arc of the move graph; arcs 2k and 2k + 1 are each other's reverse.
-struct Arc {
-  std::size_t u = 0, v = 0;
-  double cap = 0.0;
-};
 
 double potts(int a, int b, double w) {
   return a == b ? 0.0 : w;
@@ -43,42 +32,7 @@ struct AlphaExpansion::Impl {
   std::vector<std::size_t> adj_first;  // per point: its pairs in adj (CSR)
   std::vector<std::pair<int, double>> adj;  // (neighbour, w)
   std::vector<int> proposal;
-  std::vector<Arc> arcs;
-  std::vector<std::size_t> first, pos;  // counting sort of the arcs by source
-  std::vector<std::pair<std::size_t, std::size_t>> sorted;
-  std::vector<double> cap, res;
-  std::vector<Edge> rev, pred;
-  std::vector<boost::default_color_type> color;
-  std::vector<long> dist;
-
-  void add_pair(int u, int v, double cap_uv, double cap_vu) {
-    arcs.push_back({static_cast<std::size_t>(u), static_cast<std::size_t>(v), cap_uv});
-    arcs.push_back({static_cast<std::size_t>(v), static_cast<std::size_t>(u), cap_vu});
-  }
-
-  /// Builds the CSR graph from `arcs` (sorted by source) and its flat property vectors.
-  Graph make_graph(std::size_t n) {
-    first.assign(n + 1, 0);
-    for (const auto& a : arcs) ++first[a.u + 1];
-    for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
-    pos.resize(arcs.size());
-    sorted.resize(arcs.size());
-    for (std::size_t k = 0; k < arcs.size(); ++k) {
-      pos[k] = first[arcs[k].u]++;
-      sorted[pos[k]] = {arcs[k].u, arcs[k].v};
-    }
-    cap.resize(arcs.size());
-    rev.resize(arcs.size());
-    res.assign(arcs.size(), 0.0);
-    for (std::size_t k = 0; k < arcs.size(); ++k) {
-      cap[pos[k]] = arcs[k].cap;
-      rev[pos[k]] = Edge(arcs[k].v, pos[k ^ 1U]);
-    }
-    pred.assign(n, Edge());
-    color.assign(n, boost::white_color);
-    dist.assign(n, 0);
-    return Graph(boost::edges_are_sorted, sorted.begin(), sorted.end(), n);
-  }
+  BkMaxFlow graph;  // the move's graph: node i = point point_of[i]
 
   /// Selects the points whose binary move is free. A point p with f_p == alpha is fixed; so is a
   /// point for which switching costs more than all its Potts weights can repay
@@ -137,10 +91,10 @@ struct AlphaExpansion::Impl {
   }
 
   /// Kolmogorov & Zabih 2004 construction of the move energy; x = 1 means "switch to alpha",
-  /// node on the sink side. Returns the graph with source = m, sink = m + 1.
+  /// node on the sink side.
   void build(const LabelingProblem& pr, int alpha, const std::vector<int>& f) {
-    arcs.clear();
     const auto m = static_cast<int>(point_of.size());
+    graph.reset(m);
     unary.assign(static_cast<std::size_t>(m), 0.0);
     for (int i = 0; i < m; ++i) {
       const int p = point_of[static_cast<std::size_t>(i)];
@@ -165,16 +119,15 @@ struct AlphaExpansion::Impl {
         unary[static_cast<std::size_t>(np)] += c - a;
         unary[static_cast<std::size_t>(nq)] += 0.0 - c;
         const double cap = b + c - a;
-        if (cap > 0.0) add_pair(np, nq, cap, 0.0);
+        if (cap > 0.0) graph.add_edge(np, nq, cap, 0.0);
       }
     }
-    const int s = m, t = m + 1;
     for (int i = 0; i < m; ++i) {
       const double u = unary[static_cast<std::size_t>(i)];
       if (u > 0.0)
-        add_pair(s, i, u, 0.0);  // paid when i goes to the sink (switch)
+        graph.add_terminal(i, u, 0.0);  // paid when i goes to the sink (switch)
       else if (u < 0.0)
-        add_pair(i, t, -u, 0.0);  // paid when i stays at the source (keep)
+        graph.add_terminal(i, 0.0, -u);  // paid when i stays at the source (keep)
     }
   }
 };
@@ -195,21 +148,12 @@ bool AlphaExpansion::expand_prepared(const LabelingProblem& problem, int alpha,
   if (im.point_of.empty()) return false;
   const auto m = im.point_of.size();
   im.build(problem, alpha, labels);
-  const Graph g = im.make_graph(m + 2);
-  const auto ei = boost::get(boost::edge_index, g);
-  const auto vi = boost::get(boost::vertex_index, g);
-  boost::boykov_kolmogorov_max_flow(g, boost::make_iterator_property_map(im.cap.begin(), ei),
-                                    boost::make_iterator_property_map(im.res.begin(), ei),
-                                    boost::make_iterator_property_map(im.rev.begin(), ei),
-                                    boost::make_iterator_property_map(im.pred.begin(), vi),
-                                    boost::make_iterator_property_map(im.color.begin(), vi),
-                                    boost::make_iterator_property_map(im.dist.begin(), vi), vi, m,
-                                    m + 1);
+  im.graph.solve();
   im.proposal = labels;
   bool any = false;
   for (std::size_t i = 0; i < m; ++i) {
-    // Source tree (black) = keep; sink tree and free nodes = switch: both are minimum cuts.
-    if (im.color[i] == boost::black_color) continue;
+    // Source side (reachable from the source) = keep; the rest = switch: a minimum cut.
+    if (im.graph.source_side(static_cast<int>(i))) continue;
     im.proposal[static_cast<std::size_t>(im.point_of[i])] = alpha;
     any = true;
   }

@@ -59,6 +59,32 @@ TEST(AlphaExpansion, ReachesWithinTwiceTheBruteForceOptimumAndNeverIncreases) {
   EXPECT_GE(exact, 36);
 }
 
+TEST(AlphaExpansion, RunIsTheSweepOfSingleMovesOverEveryLabelUntilOneBringsNothing) {
+  // Boykov, Veksler & Zabih 2001 Fig. 2, written out with expand(): the same labels and energy.
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    const LabelingProblem pr = random_problem(40, 6, seed);
+    const int cycles = 1 + static_cast<int>(seed % 4);
+    std::vector<int> ref(40, 0);
+    AlphaExpansion single;
+    double energy = labeling_energy(pr, ref);
+    int sweeps = 0;
+    for (int c = 0; c < cycles; ++c) {
+      ++sweeps;
+      bool improved = false;
+      for (int alpha = 0; alpha < pr.num_labels; ++alpha)
+        improved = single.expand(pr, alpha, ref, energy) || improved;
+      if (!improved) break;
+    }
+    std::vector<int> f(40, 0);
+    AlphaExpansion ae;
+    const ExpansionStats st = ae.run(pr, f, cycles);
+    EXPECT_EQ(f, ref) << "seed " << seed;
+    EXPECT_EQ(st.energy, energy) << "seed " << seed;
+    EXPECT_EQ(st.cycles, sweeps) << "seed " << seed;
+    EXPECT_EQ(st.max_flow_calls, st.cycles * pr.num_labels) << "seed " << seed;
+  }
+}
+
 TEST(AlphaExpansion, SingleMoveIsTheOptimalBinaryMove) {
   // 6 points, 3 labels: the expansion move for alpha must equal the best of all 2^6 moves.
   for (std::uint64_t seed = 100; seed < 130; ++seed) {

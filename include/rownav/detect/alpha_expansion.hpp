@@ -1,7 +1,7 @@
 #pragma once
 /// @file alpha_expansion.hpp Multi-label energy minimisation by alpha-expansion (Boykov, Veksler
-/// & Zabih 2001) with Potts smoothness, each binary move solved exactly as a min cut with
-/// boost::boykov_kolmogorov_max_flow (graph construction of Kolmogorov & Zabih 2004). Used by
+/// & Zabih 2001) with Potts smoothness, each binary move solved exactly as a min cut by
+/// BkMaxFlow (max_flow.hpp; graph construction of Kolmogorov & Zabih 2004). Used by
 /// PEARL / OPAL / RUBY (Malavazi 2018 sec. 2.1.2 step 2); public so that it can be tested alone.
 #include <cstdint>
 #include <memory>
