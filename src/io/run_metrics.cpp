@@ -157,6 +157,35 @@ std::optional<double> path_length_ratio(const std::vector<Eigen::Vector2d>& driv
   return length * (covered / std::max(span, covered)) / covered;
 }
 
+namespace {
+
+/// Each estimated row end against the nearest true one of the block: the distance, and the
+/// offset along the row, + past the end into the headland, - short of it inside the row.
+void fill_row_ends(const RunResult& run, const sim::FieldTruth& truth, int block, RunSummary& r) {
+  Stats ends, along;
+  for (const auto& p : run.row_ends_world) {
+    double best = 1e300, best_along = 0.0;
+    for (int row : truth.block_rows(block)) {
+      const auto& line = truth.field().rows[static_cast<std::size_t>(row)].polyline;
+      const std::size_t n = line.size();
+      // Outward directions at the two ends (the row's last segment, pointing off the row).
+      const std::pair<Eigen::Vector2d, Eigen::Vector2d> sides[2] = {
+          {line.front(), (line.front() - line[1]).normalized()},
+          {line.back(), (line.back() - line[n - 2]).normalized()}};
+      for (const auto& [end, out] : sides) {
+        const double d = (end - p).norm();
+        if (d < best) best = d, best_along = (p - end).dot(out);
+      }
+    }
+    ends.add(best);
+    along.add(best_along);
+  }
+  r.row_end_error_mean = ends.mean(), r.row_end_error_max = ends.hi();
+  r.row_end_along_mean = along.mean();
+}
+
+}  // namespace
+
 RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int block) {
   RunSummary r;
   r.mission_done = run.final_state == navigate::NavState::done;
@@ -177,16 +206,7 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
   fill_corridors(run, truth, block, r);
   r.crushes = run.crushes;
   fill_tracking(run, r);
-  Stats ends;
-  for (const auto& p : run.row_ends_world) {
-    double best = 1e300;
-    for (int row : truth.block_rows(block)) {
-      const auto& rw = truth.field().rows[static_cast<std::size_t>(row)];
-      best = std::min({best, (rw.start() - p).norm(), (rw.end() - p).norm()});
-    }
-    ends.add(best);
-  }
-  r.row_end_error_mean = ends.mean(), r.row_end_error_max = ends.hi();
+  fill_row_ends(run, truth, block, r);
   r.place = place_metrics(run, truth, block);
   r.sim_time = run.sim_time, r.wall_time = run.wall_time;
   // Every planned corridor driven end to end in the planned order (the navigator's own count,

@@ -199,6 +199,7 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   j["corridor_width_min"] = num(s.corridor_width_min);
   j["row_end_error_mean"] = num(s.row_end_error_mean);
   j["row_end_error_max"] = num(s.row_end_error_max);
+  j["row_end_along_mean"] = num(s.row_end_along_mean);
   j["frame_latency_median_ms"] = num(s.frame_latency_median_ms);
   j["frame_latency_p99_ms"] = num(s.frame_latency_p99_ms);
   j["track_lateral_error_rmse"] = num(s.track_lateral_error_rmse);

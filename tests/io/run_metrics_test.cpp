@@ -60,5 +60,24 @@ TEST(RunMetrics, ACorridorLeftHalfWayIsNotServed) {
   EXPECT_TRUE(s.success);
 }
 
+TEST(RunMetrics, RowEndsPastTheLastPlantAreAPositiveOffsetAlongTheRowAndShortOnesNegative) {
+  sim::FieldConfig f;
+  f.vineyard.rows = 3, f.vineyard.row_length = 12.0, f.vineyard.row_spacing = 2.0;
+  const sim::Field field = sim::generate_field(f);
+  const sim::FieldTruth truth(field);
+  const auto& row = field.rows[1];
+  const Eigen::Vector2d along = (row.end() - row.start()).normalized();
+  const Eigen::Vector2d across(-along.y(), along.x());
+  RunResult run;
+  // 0.3 m past the far end (and 0.1 m beside it); 0.1 m short of the near end.
+  run.row_ends_world = {row.end() + 0.3 * along + 0.1 * across, row.start() + 0.1 * along};
+  const RunSummary s = summarize(run, truth);
+  ASSERT_TRUE(s.row_end_along_mean.has_value());
+  EXPECT_NEAR(*s.row_end_along_mean, 0.5 * (0.3 - 0.1), 1e-9);
+  EXPECT_NEAR(*s.row_end_error_max, std::hypot(0.3, 0.1), 1e-9);
+  run.row_ends_world = {row.end() - 0.2 * along};
+  EXPECT_NEAR(*summarize(run, truth).row_end_along_mean, -0.2, 1e-9);
+}
+
 }  // namespace
 }  // namespace rownav::io

@@ -36,6 +36,9 @@ struct RunSummary {
   std::optional<double> path_length_ratio_mean, path_length_ratio_max, path_length_ratio_min;
   std::optional<double> corridor_width_mean, corridor_width_max, corridor_width_min;
   std::optional<double> row_end_error_mean, row_end_error_max;
+  /// [m] mean signed offset of the estimated row ends along their rows: + past the true end
+  /// (into the headland), - short of it (the true end = the row's last plant or end post)
+  std::optional<double> row_end_along_mean;
   std::optional<double> frame_latency_median_ms, frame_latency_p99_ms;
   std::optional<double> track_lateral_error_rmse, track_lateral_error_max;
   std::optional<double> track_heading_error_rmse_deg, track_heading_error_max_deg;
@@ -44,7 +47,7 @@ struct RunSummary {
   double sim_time = 0.0, wall_time = 0.0, distance = 0.0;
   std::vector<CorridorMetrics> per_corridor;
   std::vector<CrushRecord> crushes;  ///< where each crushed plant was (summary.json `crushed`)
-  PlaceMetrics place;  ///< the map stage (issue 12); empty when it was off
+  PlaceMetrics place;                ///< the map stage (issue 12); empty when it was off
 };
 
 /// Path-length ratio of 004 eq. (7) for a driven polyline against a reference polyline: driven
