@@ -155,14 +155,17 @@ std::string trajectory_csv(const RunResult& run) {
   // With the map stage on: the place it had validated by then (its last frame at or before the
   // sample) and the true one, so that a user can see where it lagged or erred (issue 12).
   const bool placed = !run.places.empty();
-  c << "stamp,x,y,theta,state,lateral_error,v,omega,corridor" << (placed ? ",place,true_place" : "")
-    << "\n";
+  // odom_*: the pose the stack believed, in its odom frame (origin and axes at the start pose),
+  // so that the drift of its odometry can be read beside the truth.
+  c << "stamp,x,y,theta,state,lateral_error,v,omega,corridor,odom_x,odom_y,odom_theta"
+    << (placed ? ",place,true_place" : "") << "\n";
   auto place = run.places.begin();
   for (const auto& s : run.samples) {
     c << s.stamp << "," << s.T_world_base.x << "," << s.T_world_base.y << ","
       << s.T_world_base.theta << "," << core::enum_name(s.state) << ","
       << (s.place == sim::Place::lane ? s.lateral_error : NAN) << "," << s.twist.v << ","
-      << s.twist.omega << "," << s.corridor;
+      << s.twist.omega << "," << s.corridor << "," << s.T_odom_base.x << "," << s.T_odom_base.y
+      << "," << s.T_odom_base.theta;
     if (placed) {
       while (std::next(place) != run.places.end() && std::next(place)->stamp <= s.stamp) ++place;
       c << "," << (place->stamp <= s.stamp ? core::enum_name(place->estimated) : "unknown") << ","
