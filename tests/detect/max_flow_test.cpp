@@ -7,6 +7,7 @@
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace rownav::detect {
@@ -123,13 +124,19 @@ double cut_capacity(const TestGraph& tg, const std::vector<bool>& in_s) {
   return c;
 }
 
-TEST(BkMaxFlow, TwoPathsOfKnownCapacity) {
-  // s -> 0 (3), s -> 1 (2), 0 -> 1 (1), 0 -> t (2), 1 -> t (3): max flow 5, cut {s} | rest.
+/// Nodes 0 and 1 with terminal capacities (source, sink) each and the arc 0 -> 1.
+BkMaxFlow two_nodes(std::pair<double, double> t0, std::pair<double, double> t1, double cap01) {
   BkMaxFlow mf;
   mf.reset(2);
-  mf.add_terminal(0, 3.0, 2.0);
-  mf.add_terminal(1, 2.0, 3.0);
-  mf.add_edge(0, 1, 1.0, 0.0);
+  mf.add_terminal(0, t0.first, t0.second);
+  mf.add_terminal(1, t1.first, t1.second);
+  mf.add_edge(0, 1, cap01, 0.0);
+  return mf;
+}
+
+TEST(BkMaxFlow, TwoPathsOfKnownCapacity) {
+  // s -> 0 (3), s -> 1 (2), 0 -> 1 (1), 0 -> t (2), 1 -> t (3): max flow 5, cut {s} | rest.
+  BkMaxFlow mf = two_nodes({3.0, 2.0}, {2.0, 3.0}, 1.0);
   EXPECT_DOUBLE_EQ(mf.solve(), 5.0);
   EXPECT_FALSE(mf.source_side(0));
   EXPECT_FALSE(mf.source_side(1));
@@ -153,13 +160,9 @@ TEST(BkMaxFlow, FlowEqualsTheCutAndBoostsOnRandomGraphs) {
 }
 
 TEST(BkMaxFlow, SourceSideIsWhatTheSourceReachesInTheResidualGraph) {
-  // A saturated chain s -> 0 -> 1 -> t (1, 1, 5): node 0 is reachable (residual of 0 -> 1 is 0
-  // only after the flow), node 1 is not.
-  BkMaxFlow mf;
-  mf.reset(2);
-  mf.add_terminal(0, 2.0, 0.0);
-  mf.add_terminal(1, 0.0, 5.0);
-  mf.add_edge(0, 1, 1.0, 0.0);
+  // s -> 0 (2), 0 -> 1 (1), 1 -> t (5): a flow of 1 saturates 0 -> 1 only; s still reaches
+  // node 0 (1 left on s -> 0) and not node 1.
+  BkMaxFlow mf = two_nodes({2.0, 0.0}, {0.0, 5.0}, 1.0);
   EXPECT_DOUBLE_EQ(mf.solve(), 1.0);
   EXPECT_TRUE(mf.source_side(0));
   EXPECT_FALSE(mf.source_side(1));
