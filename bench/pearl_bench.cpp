@@ -159,21 +159,19 @@ const std::vector<std::vector<Eigen::Vector2f>>& corn_frames() {
 template <class Detector>
 void run_corn(benchmark::State& state, Detector& det, bool planar = false) {
   const auto& frames = corn_frames();
+  const auto input = [planar](const std::vector<Eigen::Vector2f>& f) {
+    detect::DetectorInput in;
+    in.points = f;
+    in.planar_scan = planar;
+    return in;
+  };
   for (auto _ : state)
-    for (const auto& f : frames) {
-      detect::DetectorInput in;
-      in.points = f;
-      in.planar_scan = planar;
-      benchmark::DoNotOptimize(det.detect(in).rows.size());
-    }
+    for (const auto& f : frames) benchmark::DoNotOptimize(det.detect(input(f)).rows.size());
   // The rows of one more pass, summed: equal sums (JSON output, full precision) between two
   // builds say that a speed-up did not change what is detected.
   double row_sum = 0.0, rows = 0.0;
   for (const auto& f : frames) {
-    detect::DetectorInput in;
-    in.points = f;
-    in.planar_scan = planar;
-    for (const auto& r : det.detect(in).rows) {
+    for (const auto& r : det.detect(input(f)).rows) {
       row_sum += r.offset + r.heading;
       rows += 1.0;
     }

@@ -11,17 +11,16 @@ void BkMaxFlow::reset(int num_nodes) {
   flow_ = 0.0;
 }
 
-void BkMaxFlow::add_terminal(int node, double from_source, double to_sink) {
+void BkMaxFlow::add_terminal(int i, double from_source, double to_sink) {
   // Both terminal arcs carry min(from_source, to_sink) at once; the rest is one signed value.
-  Node& n = nodes_[static_cast<std::size_t>(node)];
-  n.tr += from_source - to_sink;
+  node(i).tr += from_source - to_sink;
   flow_ += std::min(from_source, to_sink);
 }
 
 void BkMaxFlow::add_edge(int p, int q, double cap, double rev_cap) {
   const int a = static_cast<int>(arcs_.size());
-  Node& np = nodes_[static_cast<std::size_t>(p)];
-  Node& nq = nodes_[static_cast<std::size_t>(q)];
+  Node& np = node(p);
+  Node& nq = node(q);
   arcs_.push_back({q, np.first, cap});
   arcs_.push_back({p, nq.first, rev_cap});
   np.first = a;
@@ -29,7 +28,7 @@ void BkMaxFlow::add_edge(int p, int q, double cap, double rev_cap) {
 }
 
 void BkMaxFlow::activate(int i) {
-  Node& n = nodes_[static_cast<std::size_t>(i)];
+  Node& n = node(i);
   if (n.active) return;
   n.active = true;
   queue_.push_back(i);
@@ -38,8 +37,8 @@ void BkMaxFlow::activate(int i) {
 int BkMaxFlow::next_active() {
   while (queue_head_ < queue_.size()) {
     const int i = queue_[queue_head_++];
-    if (nodes_[static_cast<std::size_t>(i)].parent != kFree) return i;  // stays active
-    nodes_[static_cast<std::size_t>(i)].active = false;  // left its tree since it was queued
+    if (node(i).parent != kFree) return i;  // stays active
+    node(i).active = false;                 // left its tree since it was queued
   }
   queue_.clear();
   queue_head_ = 0;
@@ -47,19 +46,17 @@ int BkMaxFlow::next_active() {
 }
 
 int BkMaxFlow::grow(int i) {
-  Node& ni = nodes_[static_cast<std::size_t>(i)];
-  for (int a = ni.first; a >= 0; a = arcs_[static_cast<std::size_t>(a)].next) {
-    const Arc& arc = arcs_[static_cast<std::size_t>(a)];
-    // S grows along arcs i -> j with residual capacity, T along j -> i.
-    const double r = ni.sink ? arcs_[static_cast<std::size_t>(a ^ 1)].r : arc.r;
-    if (!(r > 0.0)) continue;
-    Node& nj = nodes_[static_cast<std::size_t>(arc.head)];
+  Node& ni = node(i);
+  for (int a = ni.first; a >= 0; a = arc(a).next) {
+    if (!(tree_residual(a, ni.sink) > 0.0)) continue;  // i's tree can grow along a
+    const int j = arc(a).head;
+    Node& nj = node(j);
     if (nj.parent == kFree) {
       nj.sink = ni.sink;
       nj.parent = a ^ 1;
       nj.ts = ni.ts;
       nj.dist = ni.dist + 1;
-      activate(arc.head);
+      activate(j);
     } else if (nj.sink != ni.sink) {
       return ni.sink ? a ^ 1 : a;  // the arc from the S side to the T side
     } else if (nj.ts <= ni.ts && nj.dist > ni.dist) {
@@ -73,14 +70,11 @@ int BkMaxFlow::grow(int i) {
 }
 
 void BkMaxFlow::make_orphan(int i) {
-  nodes_[static_cast<std::size_t>(i)].parent = kOrphan;
+  node(i).parent = kOrphan;
   orphans_.push_back(i);
 }
 
 void BkMaxFlow::augment(int middle) {
-  auto& arcs = arcs_;
-  const auto arc = [&arcs](int a) -> Arc& { return arcs[static_cast<std::size_t>(a)]; };
-  const auto node = [this](int i) -> Node& { return nodes_[static_cast<std::size_t>(i)]; };
   // Bottleneck of the path source -> ... -> tail(middle) -> head(middle) -> ... -> sink.
   double b = arc(middle).r;
   int i = arc(middle ^ 1).head;
@@ -124,7 +118,7 @@ void BkMaxFlow::augment(int middle) {
 int BkMaxFlow::origin_distance(int j) {
   int d = 0;
   for (;;) {
-    Node& n = nodes_[static_cast<std::size_t>(j)];
+    Node& n = node(j);
     if (n.ts == time_) return d + n.dist;
     ++d;
     if (n.parent == kTerminal) {
@@ -133,20 +127,20 @@ int BkMaxFlow::origin_distance(int j) {
       return d;
     }
     if (n.parent == kOrphan) return -1;
-    j = arcs_[static_cast<std::size_t>(n.parent)].head;
+    j = arc(n.parent).head;
   }
 }
 
 void BkMaxFlow::adopt_orphan(int i) {
-  Node& ni = nodes_[static_cast<std::size_t>(i)];
+  Node& ni = node(i);
   int best_arc = -1;
   int best_d = std::numeric_limits<int>::max();
-  for (int a = ni.first; a >= 0; a = arcs_[static_cast<std::size_t>(a)].next) {
-    const double r =
-        ni.sink ? arcs_[static_cast<std::size_t>(a)].r : arcs_[static_cast<std::size_t>(a ^ 1)].r;
-    const int j = arcs_[static_cast<std::size_t>(a)].head;
-    const Node& nj = nodes_[static_cast<std::size_t>(j)];
-    if (!(r > 0.0) || nj.sink != ni.sink || nj.parent == kFree) continue;
+  for (int a = ni.first; a >= 0; a = arc(a).next) {
+    const int j = arc(a).head;
+    const Node& nj = node(j);
+    // j can be i's parent when the edge j -> i carries flow in their tree's direction.
+    if (!(tree_residual(a ^ 1, ni.sink) > 0.0) || nj.sink != ni.sink || nj.parent == kFree)
+      continue;
     // A valid parent has a path of parent arcs to the terminal (sec. 3.2 "origin").
     int d = origin_distance(j);
     if (d < 0) continue;
@@ -154,11 +148,11 @@ void BkMaxFlow::adopt_orphan(int i) {
       best_arc = a;
       best_d = d;
     }
-    for (int k = j; nodes_[static_cast<std::size_t>(k)].ts != time_;) {  // sec. 3.4 marks
-      Node& nk = nodes_[static_cast<std::size_t>(k)];
+    for (int k = j; node(k).ts != time_;) {  // sec. 3.4 marks
+      Node& nk = node(k);
       nk.ts = time_;
       nk.dist = d--;
-      k = arcs_[static_cast<std::size_t>(nk.parent)].head;
+      k = arc(nk.parent).head;
     }
   }
   if (best_arc >= 0) {
@@ -170,14 +164,12 @@ void BkMaxFlow::adopt_orphan(int i) {
   // No parent: i becomes free; its tree neighbours that can reach it become active and its
   // children orphans.
   ni.parent = kFree;
-  for (int a = ni.first; a >= 0; a = arcs_[static_cast<std::size_t>(a)].next) {
-    const int j = arcs_[static_cast<std::size_t>(a)].head;
-    Node& nj = nodes_[static_cast<std::size_t>(j)];
+  for (int a = ni.first; a >= 0; a = arc(a).next) {
+    const int j = arc(a).head;
+    Node& nj = node(j);
     if (nj.sink != ni.sink || nj.parent == kFree) continue;
-    const double r =
-        ni.sink ? arcs_[static_cast<std::size_t>(a)].r : arcs_[static_cast<std::size_t>(a ^ 1)].r;
-    if (r > 0.0) activate(j);
-    if (nj.parent >= 0 && arcs_[static_cast<std::size_t>(nj.parent)].head == i) make_orphan(j);
+    if (tree_residual(a ^ 1, ni.sink) > 0.0) activate(j);
+    if (nj.parent >= 0 && arc(nj.parent).head == i) make_orphan(j);
   }
 }
 
@@ -204,8 +196,8 @@ double BkMaxFlow::solve() {
   }
   int current = -1;  // a node that closed a path is grown again before the queue moves on
   for (;;) {
-    if (current >= 0 && nodes_[static_cast<std::size_t>(current)].parent == kFree) {
-      nodes_[static_cast<std::size_t>(current)].active = false;
+    if (current >= 0 && node(current).parent == kFree) {
+      node(current).active = false;
       current = -1;
     }
     const int i = current >= 0 ? current : next_active();
@@ -213,7 +205,7 @@ double BkMaxFlow::solve() {
     const int middle = grow(i);
     ++time_;
     if (middle < 0) {
-      nodes_[static_cast<std::size_t>(i)].active = false;
+      node(i).active = false;
       current = -1;
       continue;
     }
@@ -224,8 +216,8 @@ double BkMaxFlow::solve() {
   return flow_;
 }
 
-bool BkMaxFlow::source_side(int node) const {
-  const Node& n = nodes_[static_cast<std::size_t>(node)];
+bool BkMaxFlow::source_side(int i) const {
+  const Node& n = node(i);
   return n.parent != kFree && !n.sink;
 }
 

@@ -140,25 +140,6 @@ void fill_tracking(const RunResult& run, RunSummary& r) {
   r.corridor_width_min = width.lo();
 }
 
-}  // namespace
-
-std::optional<double> path_length_ratio(const std::vector<Eigen::Vector2d>& driven,
-                                        const std::vector<Eigen::Vector2d>& reference) {
-  if (driven.size() < 2 || reference.size() < 2) return std::nullopt;
-  double length = 0.0;
-  for (std::size_t i = 1; i < driven.size(); ++i) length += (driven[i] - driven[i - 1]).norm();
-  const auto a = sim::project_on_polyline(reference, driven.front());
-  const auto b = sim::project_on_polyline(reference, driven.back());
-  const double covered =
-      std::abs(std::clamp(b.along, 0.0, b.length) - std::clamp(a.along, 0.0, a.length));
-  if (covered < 1.0) return std::nullopt;
-  // Only the part over the reference counts: scale the driven length by the covered fraction.
-  const double span = std::abs(b.along - a.along);
-  return length * (covered / std::max(span, covered)) / covered;
-}
-
-namespace {
-
 /// Each estimated row end against the nearest true one of the block: the distance, and the
 /// offset along the row, + past the end into the headland, - short of it inside the row.
 void fill_row_ends(const RunResult& run, const sim::FieldTruth& truth, int block, RunSummary& r) {
@@ -185,6 +166,21 @@ void fill_row_ends(const RunResult& run, const sim::FieldTruth& truth, int block
 }
 
 }  // namespace
+
+std::optional<double> path_length_ratio(const std::vector<Eigen::Vector2d>& driven,
+                                        const std::vector<Eigen::Vector2d>& reference) {
+  if (driven.size() < 2 || reference.size() < 2) return std::nullopt;
+  double length = 0.0;
+  for (std::size_t i = 1; i < driven.size(); ++i) length += (driven[i] - driven[i - 1]).norm();
+  const auto a = sim::project_on_polyline(reference, driven.front());
+  const auto b = sim::project_on_polyline(reference, driven.back());
+  const double covered =
+      std::abs(std::clamp(b.along, 0.0, b.length) - std::clamp(a.along, 0.0, a.length));
+  if (covered < 1.0) return std::nullopt;
+  // Only the part over the reference counts: scale the driven length by the covered fraction.
+  const double span = std::abs(b.along - a.along);
+  return length * (covered / std::max(span, covered)) / covered;
+}
 
 RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int block) {
   RunSummary r;

@@ -19,8 +19,8 @@ class BkMaxFlow {
   /// Removes every arc and makes `num_nodes` nodes with no terminal capacity (buffers kept).
   void reset(int num_nodes);
 
-  /// Adds capacity `from_source` on source -> node and `to_sink` on node -> sink (>= 0 each).
-  void add_terminal(int node, double from_source, double to_sink);
+  /// Adds capacity `from_source` on source -> node i and `to_sink` on i -> sink (>= 0 each).
+  void add_terminal(int i, double from_source, double to_sink);
 
   /// Adds the arcs p -> q with capacity `cap` and q -> p with capacity `rev_cap` (>= 0 each).
   void add_edge(int p, int q, double cap, double rev_cap);
@@ -28,10 +28,10 @@ class BkMaxFlow {
   /// Pushes the maximum flow; returns its value.
   double solve();
 
-  /// After solve(): true when `node` is reachable from the source in the residual graph, i.e.
+  /// After solve(): true when node i is reachable from the source in the residual graph, i.e.
   /// on the source side of the minimum cut whose source side is smallest. That side does not
   /// depend on which maximum flow was found, so any exact max-flow solver gives the same cut.
-  bool source_side(int node) const;
+  bool source_side(int i) const;
 
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
 
@@ -55,6 +55,14 @@ class BkMaxFlow {
     double r = 0.0;  // residual capacity
   };
 
+  Node& node(int i) { return nodes_[static_cast<std::size_t>(i)]; }
+  const Node& node(int i) const { return nodes_[static_cast<std::size_t>(i)]; }
+  Arc& arc(int a) { return arcs_[static_cast<std::size_t>(a)]; }
+  /// Residual capacity of a tree edge tail(a) -> head(a), in the direction the tree grows: out
+  /// of the source in S (arc a), into the sink in T (its reverse).
+  double tree_residual(int a, bool sink) const {
+    return arcs_[static_cast<std::size_t>(sink ? a ^ 1 : a)].r;
+  }
   void activate(int i);
   int next_active();
   int grow(int i);  // sec. 3.2 growth stage: returns the arc S -> T that closes a path, or -1
