@@ -21,6 +21,8 @@ void RobotSpec::validate() const {
   check_positive(length, "length");
   check_positive(width, "width");
   check_range(base_to_front, 0.0, length, "base_to_front");
+  check_non_negative(odometry_x_icr, "odometry_x_icr");
+  check_range(odometry_alpha, 0.1, 1.5, "odometry_alpha");
 }
 
 double RobotSpec::min_turn_radius() const {

@@ -27,9 +27,10 @@ localize::LocalizerConfig localizer_config_for(const core::RobotSpec& robot, int
   o.wheel_radius = robot.wheel_radius;
   o.wheelbase = robot.wheelbase;
   o.ticks_per_rev = ticks_per_rev;
-  // Nominal (ideal) ICR parameters, Bertoglio 2023 eq. (2): x_ICR = track / 2, alpha = 1.
-  o.x_icr = 0.5 * robot.track_width;
-  o.alpha = 1.0;
+  // Bertoglio 2023 eq. (2): the robot file's calibration where it gives one, else the nominal
+  // (ideal) x_ICR = track / 2, alpha = 1.
+  o.x_icr = robot.odometry_x_icr > 0.0 ? robot.odometry_x_icr : 0.5 * robot.track_width;
+  o.alpha = robot.odometry_alpha;
   c.validate();
   return c;
 }

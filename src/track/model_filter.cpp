@@ -25,12 +25,26 @@ double fir(std::deque<double>& history, double e, const std::vector<double>& b) 
   return weight > 0.0 ? sum / weight : e;
 }
 
+/// The frame's gaps between adjacent rows wider than `min_gap`, ascending.
+std::vector<double> row_gaps(const core::RowObservation& obs, double min_gap) {
+  std::vector<double> offsets, gaps;
+  for (const auto& r : obs.rows)
+    if (finite_row(r)) offsets.push_back(r.offset);
+  std::sort(offsets.begin(), offsets.end());
+  for (std::size_t i = 1; i < offsets.size(); ++i)
+    if (offsets[i] - offsets[i - 1] > min_gap) gaps.push_back(offsets[i] - offsets[i - 1]);
+  std::sort(gaps.begin(), gaps.end());
+  return gaps;
+}
+
 }  // namespace
 
 void ModelFilterConfig::validate() const {
   core::check_positive(box_half_width, "box_half_width");
   core::check_range(box_spacing_ratio, 0.0, 1.0, "box_spacing_ratio");
   core::check_non_negative(init_min_distance, "init_min_distance");
+  core::check_range(init_min_spacing_ratio, 0.0, 0.5, "init_min_spacing_ratio");
+  core::check_range(init_lattice_tolerance, 0.0, 1.0, "init_lattice_tolerance");
   core::check(init_max_distance > init_min_distance, "init_max_distance",
               "must be > init_min_distance");
   core::check_non_negative(init_spacing_ratio, "init_spacing_ratio");
@@ -85,17 +99,19 @@ double ModelFilterTracker::init_max(const core::RowObservation& obs) const {
   // and no spacing is measured before a first row is accepted: the robot never started. The
   // narrowest gap between adjacent rows of this frame is at most the spacing (a row the
   // detector missed widens a gap), so the window never reaches the next corridor's row.
-  std::vector<double> offsets;
-  for (const auto& r : obs.rows)
-    if (finite_row(r)) offsets.push_back(r.offset);
-  std::sort(offsets.begin(), offsets.end());
-  double narrowest = 0.0;
-  for (std::size_t i = 1; i < offsets.size(); ++i) {
-    const double gap = offsets[i] - offsets[i - 1];
-    if (gap > 2.0 * config_.init_min_distance && (narrowest == 0.0 || gap < narrowest))
-      narrowest = gap;
-  }
+  const std::vector<double> gaps = row_gaps(obs, 2.0 * config_.init_min_distance);
+  const double narrowest = gaps.empty() ? 0.0 : gaps.front();
   return std::max(init_max(), config_.init_frame_ratio * narrowest);
+}
+
+double ModelFilterTracker::init_min(const core::RowObservation& obs) const {
+  // Only a lattice of this frame's rows narrows the edge: its two narrowest gaps agree. Two
+  // lines alone can be anything (the pairs 0.35-0.6 m apart seen while turning), and so can the
+  // spacing measured in a turn's first frames (0.16 m seen in 0.75 m maize).
+  const std::vector<double> gaps = row_gaps(obs, config_.init_min_distance);
+  if (gaps.size() < 2 || gaps[1] > (1.0 + config_.init_lattice_tolerance) * gaps[0])
+    return config_.init_min_distance;
+  return std::min(config_.init_min_distance, config_.init_min_spacing_ratio * gaps[0]);
 }
 
 double ModelFilterTracker::box_half_width() const {
@@ -122,13 +138,14 @@ std::optional<core::DataFilterBoxes> ModelFilterTracker::data_filter(
   return f;
 }
 
-bool ModelFilterTracker::in_box(const core::RowLine& r, int s, double init_max) const {
+bool ModelFilterTracker::in_box(const core::RowLine& r, int s, double init_min,
+                                double init_max) const {
   const bool side = s == 0 ? r.offset > 0.0 : r.offset < 0.0;
   if (!side) return false;
   if (!have_[s] || std::abs(model_[s].a) > config_.max_steepness) {
     // Malavazi 2018 sec. 3.1.1: no (or a steep) model: the rows on that side, 0.3-3 m away.
     const double d = std::abs(r.offset);
-    return d >= config_.init_min_distance && d <= init_max;
+    return d >= init_min && d <= init_max;
   }
   // Infinite-length box of half width box_half_width around the model (sec. 2.3.1), checked over
   // the row's support.
@@ -147,11 +164,11 @@ bool ModelFilterTracker::consistent(const SlopeIntercept& c, int s) const {
 bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
   // Model filter 1 + 2 (Malavazi 2018 Fig. 9): per side the nearest row inside its box.
   int pick[2] = {-1, -1};
-  const double window = init_max(obs);
+  const double near = init_min(obs), far = init_max(obs);
   for (int s = 0; s < 2; ++s)
     for (std::size_t i = 0; i < obs.rows.size(); ++i) {
       const auto& r = obs.rows[i];
-      if (!finite_row(r) || !in_box(r, s, window)) continue;
+      if (!finite_row(r) || !in_box(r, s, near, far)) continue;
       if (pick[s] < 0 || std::abs(r.offset) < std::abs(obs.rows[std::size_t(pick[s])].offset))
         pick[s] = static_cast<int>(i);
     }

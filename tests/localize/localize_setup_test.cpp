@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <stdexcept>
 
 #include "rownav/io/yaml_config.hpp"
 #include "rownav/sim/robot.hpp"
@@ -23,7 +24,20 @@ TEST(LocalizeSetup, NominalParametersNotTrueOnes) {
   EXPECT_DOUBLE_EQ(c.odometry.alpha, 1.0);
   EXPECT_EQ(c.odometry.ticks_per_rev, 1024);
   robot.drive = sim::DriveKind::ackermann;
-  EXPECT_EQ(localizer_config_for(robot, sim.encoders.ticks_per_rev).odometry.model, localize::DriveModel::ackermann);
+  EXPECT_EQ(localizer_config_for(robot, sim.encoders.ticks_per_rev).odometry.model,
+            localize::DriveModel::ackermann);
+}
+
+TEST(LocalizeSetup, RobotFilesOdometryCalibrationReplacesTheNominalParameters) {
+  sim::RobotConfig robot;
+  robot.track_width = 0.7;
+  robot.odometry_x_icr = 0.41;
+  robot.odometry_alpha = 0.88;
+  const auto c = localizer_config_for(robot, 1024);
+  EXPECT_DOUBLE_EQ(c.odometry.x_icr, 0.41);
+  EXPECT_DOUBLE_EQ(c.odometry.alpha, 0.88);
+  robot.odometry_alpha = 0.0;
+  EXPECT_THROW(robot.validate(), std::invalid_argument);
 }
 
 TEST(LocalizeSetup, ShippedDefaultFileEqualsDefaults) {

@@ -65,6 +65,34 @@ TEST(ModelFilterInit, AMissingNearRowDoesNotLetTheNextCorridorsRowIn) {
   }
 }
 
+TEST(ModelFilterInit, AnOffCentreRobotInNarrowRowsTakesItsNearRowNotTheOneBeyond) {
+  // 0.75 m maize, the robot up to 0.14 m off the corridor's centre (as a headland turn leaves
+  // it): its near row stands 0.235-0.375 m away, inside the paper's 0.3 m near edge. The tracker
+  // took the row beyond it, a corridor 1.5 m wide and 0.34 m off (issues 10 / 11).
+  for (const double offset : {0.0, 0.09, -0.09, 0.14, -0.14}) {
+    ModelFilterTracker tracker;
+    test::CorridorScene scene;
+    scene.spacing = 0.75;
+    std::mt19937_64 rng(14);
+    const core::Pose2 T(0.0, offset, 0.0);
+    const RowTracking out = tracker.update(test::observe(scene, T, 0.0, rng), T);
+    ASSERT_EQ(out.status, TrackStatus::tracking) << offset;
+    ASSERT_GE(out.left, 0) << offset;
+    ASSERT_GE(out.right, 0) << offset;
+    EXPECT_NEAR(out.lateral_error, offset, 1e-6) << offset;
+    // With the paper's fixed 0.3 m edge (ratio 0.5 leaves it in force) the near row is missed.
+    if (std::abs(offset) < 0.09) continue;
+    ModelFilterConfig paper;
+    paper.init_min_spacing_ratio = 0.5;
+    ModelFilterTracker fixed(paper);
+    const RowTracking old = fixed.update(test::observe(scene, T, 0.0, rng), T);
+    EXPECT_GT(std::abs(old.lateral_error - offset), 0.3) << offset;
+  }
+  ModelFilterConfig bad;
+  bad.init_min_spacing_ratio = 0.6;  // beyond half a spacing: no corridor row could be taken
+  EXPECT_THROW(bad.validate(), std::invalid_argument);
+}
+
 TEST(ModelFilterInit, NarrowRowsKeepThePapersWindow) {
   // 2 m vineyard rows, robot 0.4 m off-centre: the frame's gaps give a window under the
   // paper's 3 m, which stays in force, and both corridor rows are taken.

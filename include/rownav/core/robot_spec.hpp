@@ -33,6 +33,12 @@ struct RobotSpec {
   double length = 0.9;               ///< [m] body footprint length
   double width = 0.6;                ///< [m] body footprint width
   double base_to_front = 0.45;       ///< [m] base_link to the front of the footprint
+  /// [m] the ICR distance x_ICR the robot's wheel odometry assumes, as calibrated on the robot
+  /// (Bertoglio 2023 eq. (2)); 0: the nominal track_width / 2 (skid-steer only)
+  double odometry_x_icr = 0.0;
+  /// [-] the correction factor alpha the wheel odometry assumes, as calibrated on the robot
+  /// (Bertoglio 2023 eq. (2)); 1: nominal (skid-steer only)
+  double odometry_alpha = 1.0;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -51,6 +57,8 @@ struct RobotSpec {
     v("length", s.length);
     v("width", s.width);
     v("base_to_front", s.base_to_front);
+    v("odometry_x_icr", s.odometry_x_icr);
+    v("odometry_alpha", s.odometry_alpha);
   }
   void validate() const;
   /// [m] smallest turn radius: wheelbase / tan(max_steer) for ackermann, 0 otherwise.

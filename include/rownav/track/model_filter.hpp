@@ -30,6 +30,16 @@ struct ModelFilterConfig {
   /// the detected rows are gated by the boxes
   bool filter_points = true;
   double init_min_distance = 0.3;  ///< [m] without a model: rows nearer are ignored (Malavazi 2018)
+  /// [-] the same near edge never exceeds this fraction of the row spacing the frame shows (its
+  /// narrowest gap between adjacent rows, when a lattice: see init_lattice_tolerance): the
+  /// paper's 0.3 m fit its 1 m beds, but a robot 0.09 m off a 0.75 m maize corridor's centre
+  /// has its near row 0.29 m away, and the tracker took the row beyond it (issues 10 / 11:
+  /// maize 0 / 3 with calibrated odometry)
+  double init_min_spacing_ratio = 0.3;
+  /// [-] the frame's two narrowest gaps (> init_min_distance) make a lattice when the wider is
+  /// at most this fraction above the narrower; without one the near edge stays
+  /// init_min_distance (rownav)
+  double init_lattice_tolerance = 0.25;
   double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
   /// [-] once the row spacing is measured (centre to centre, accepted frames), the same window
   /// reaches at least this fraction of it (issue 10: the paper's 3 m fit its vegetable beds; a
@@ -41,7 +51,7 @@ struct ModelFilterConfig {
   /// 3.2 m were outside the 3 m window, the robot never started; 0.9 let a 5 m orchard's next
   /// row in after a turn)
   double init_frame_ratio = 0.6;
-  double max_slope_change = 0.1;   ///< [-] |a - a_prev| above this: inconsistent (rownav)
+  double max_slope_change = 0.1;    ///< [-] |a - a_prev| above this: inconsistent (rownav)
   double max_offset_change = 0.25;  ///< [m] |b - b_prev| above this: inconsistent (rownav)
   /// [m] |b_l - b_r - mean width| above this: inconsistent (b_l - b_r: the width between the
   /// fitted lines, not the row spacing, issue 10)
@@ -64,6 +74,8 @@ struct ModelFilterConfig {
     v("box_spacing_ratio", s.box_spacing_ratio);
     v("filter_points", s.filter_points);
     v("init_min_distance", s.init_min_distance);
+    v("init_min_spacing_ratio", s.init_min_spacing_ratio);
+    v("init_lattice_tolerance", s.init_lattice_tolerance);
     v("init_max_distance", s.init_max_distance);
     v("init_spacing_ratio", s.init_spacing_ratio);
     v("init_frame_ratio", s.init_frame_ratio);
@@ -101,7 +113,7 @@ class ModelFilterTracker : public TrackerBase {
 
  private:
   /// Data-filter box test of a detected row against side s (0 left, 1 right).
-  bool in_box(const core::RowLine& r, int s, double init_max) const;
+  bool in_box(const core::RowLine& r, int s, double init_min, double init_max) const;
   /// Consistency of a candidate with the followed model of side s and the history.
   bool consistent(const SlopeIntercept& c, int s) const;
   double mean_spacing() const;
@@ -111,13 +123,16 @@ class ModelFilterTracker : public TrackerBase {
   /// narrowest gap between this frame's adjacent rows (a missing row widens a gap, never
   /// narrows it), so that a field wider than 2 x init_max_distance can be entered at all.
   double init_max(const core::RowObservation& obs) const;
+  /// [m] initialisation window's near edge: init_min_distance, or less in narrow rows
+  /// (init_min_spacing_ratio x the narrowest gap of `obs`'s rows when they form a lattice).
+  double init_min(const core::RowObservation& obs) const;
   /// [m] the data-filter box half width in effect (box_spacing_ratio x the measured spacing).
   double box_half_width() const;
 
   ModelFilterConfig config_;
-  bool have_[2] = {false, false};                     // left, right
-  SlopeIntercept model_[2];                           // followed models, current base frame
-  double seen_[2] = {0.0, 0.0};                       // stamp of the last acceptance per side
+  bool have_[2] = {false, false};  // left, right
+  SlopeIntercept model_[2];        // followed models, current base frame
+  double seen_[2] = {0.0, 0.0};    // stamp of the last acceptance per side
   // Extent of the accepted rows' points along x (first / last point, current base frame), carried
   // by odometry like the models: the end-of-row and row-end logic read it.
   Eigen::Vector2d first_[2], last_[2];
