@@ -208,6 +208,10 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
   parts_.pipeline->set_data_filter(pose ? parts_.tracker->data_filter(*pose) : std::nullopt);
   r.observation = detect_frame(frame, r.levelled);
   if (!pose) return r;  // no odometry yet: nothing to track against
+  // A headland manoeuvre's frames see the rows at every angle: the tracker keeps what it learnt
+  // of the field's geometry through them (issue 10: a 0.61 m "lattice" in 2.8 m rows).
+  const NavState state = navigator_->state();
+  parts_.tracker->set_manoeuvring(state == NavState::turning || state == NavState::headland);
   r.tracking = parts_.tracker->update(r.observation, *pose);
   if (place_) estimate_place(frame, r, *pose);
   if (config_.stack.mode == StackMode::track) return r;

@@ -10,11 +10,6 @@ namespace rownav::track {
 
 namespace {
 
-bool finite_row(const core::RowLine& r) {
-  return std::isfinite(r.offset) && std::isfinite(r.heading) && std::abs(r.heading) < 1.4 &&
-         std::isfinite(r.x_min) && std::isfinite(r.x_max);
-}
-
 /// Malavazi 2018 eq. (6): e_f[k] = sum b_i e[k - i] over the values available so far (the
 /// coefficients renormalised while the history is shorter than the filter).
 double fir(std::deque<double>& history, double e, const std::vector<double>& b) {
@@ -23,18 +18,6 @@ double fir(std::deque<double>& history, double e, const std::vector<double>& b) 
   double sum = 0.0, weight = 0.0;
   for (std::size_t i = 0; i < history.size(); ++i) sum += b[i] * history[i], weight += b[i];
   return weight > 0.0 ? sum / weight : e;
-}
-
-/// The frame's gaps between adjacent rows wider than `min_gap`, ascending.
-std::vector<double> row_gaps(const core::RowObservation& obs, double min_gap) {
-  std::vector<double> offsets, gaps;
-  for (const auto& r : obs.rows)
-    if (finite_row(r)) offsets.push_back(r.offset);
-  std::sort(offsets.begin(), offsets.end());
-  for (std::size_t i = 1; i < offsets.size(); ++i)
-    if (offsets[i] - offsets[i - 1] > min_gap) gaps.push_back(offsets[i] - offsets[i - 1]);
-  std::sort(gaps.begin(), gaps.end());
-  return gaps;
 }
 
 }  // namespace
@@ -69,6 +52,9 @@ ModelFilterTracker::ModelFilterTracker(const ModelFilterConfig& config)
 void ModelFilterTracker::clear_models() {
   have_[0] = have_[1] = false;
   permanence_ = 0;
+  // The width history belonged to the erased pair: kept, it rejected the first side to come back
+  // for good (only the side with a model passes it; closed_loop_narrow, a turn's pair 1.32 m).
+  spacings_.clear();
   fir_lat_.clear(), fir_head_.clear(), fir_dist_.clear();
 }
 
@@ -85,33 +71,6 @@ void ModelFilterTracker::predict(const core::Pose2& T_prev_now, const core::Pose
 double ModelFilterTracker::mean_spacing() const {
   if (spacings_.empty()) return common().default_row_spacing;
   return std::accumulate(spacings_.begin(), spacings_.end(), 0.0) / double(spacings_.size());
-}
-
-double ModelFilterTracker::init_max() const {
-  // Only the spacing measured over accepted frames: one frame's rows can skip a row (two rows
-  // 10 m apart read as a 10 m spacing and would let the next row in).
-  return std::max(config_.init_max_distance, config_.init_spacing_ratio * measured_spacing());
-}
-
-double ModelFilterTracker::init_max(const core::RowObservation& obs) const {
-  if (measured_spacing() > 0.0) return init_max();
-  // Issue 10: a 6.4 m orchard's corridor rows stand 3.2 m away, outside the paper's 3 m window,
-  // and no spacing is measured before a first row is accepted: the robot never started. The
-  // narrowest gap between adjacent rows of this frame is at most the spacing (a row the
-  // detector missed widens a gap), so the window never reaches the next corridor's row.
-  const std::vector<double> gaps = row_gaps(obs, 2.0 * config_.init_min_distance);
-  const double narrowest = gaps.empty() ? 0.0 : gaps.front();
-  return std::max(init_max(), config_.init_frame_ratio * narrowest);
-}
-
-double ModelFilterTracker::init_min(const core::RowObservation& obs) const {
-  // Only a lattice of this frame's rows narrows the edge: its two narrowest gaps agree. Two
-  // lines alone can be anything (the pairs 0.35-0.6 m apart seen while turning), and so can the
-  // spacing measured in a turn's first frames (0.16 m seen in 0.75 m maize).
-  const std::vector<double> gaps = row_gaps(obs, config_.init_min_distance);
-  if (gaps.size() < 2 || gaps[1] > (1.0 + config_.init_lattice_tolerance) * gaps[0])
-    return config_.init_min_distance;
-  return std::min(config_.init_min_distance, config_.init_min_spacing_ratio * gaps[0]);
 }
 
 double ModelFilterTracker::box_half_width() const {
@@ -164,11 +123,13 @@ bool ModelFilterTracker::consistent(const SlopeIntercept& c, int s) const {
 bool ModelFilterTracker::correct(const core::RowObservation& obs, const core::Pose2&) {
   // Model filter 1 + 2 (Malavazi 2018 Fig. 9): per side the nearest row inside its box.
   int pick[2] = {-1, -1};
-  const double near = init_min(obs), far = init_max(obs);
+  observe_lattice(obs);
+  const double near = init_min(), far = init_max(obs);
+  drop_models_beyond_lattice(obs, near);
   for (int s = 0; s < 2; ++s)
     for (std::size_t i = 0; i < obs.rows.size(); ++i) {
       const auto& r = obs.rows[i];
-      if (!finite_row(r) || !in_box(r, s, near, far)) continue;
+      if (!usable_row(r) || !in_box(r, s, near, far)) continue;
       if (pick[s] < 0 || std::abs(r.offset) < std::abs(obs.rows[std::size_t(pick[s])].offset))
         pick[s] = static_cast<int>(i);
     }

@@ -30,20 +30,23 @@ struct ModelFilterConfig {
   /// the detected rows are gated by the boxes
   bool filter_points = true;
   double init_min_distance = 0.3;  ///< [m] without a model: rows nearer are ignored (Malavazi 2018)
-  /// [-] the same near edge never exceeds this fraction of the row spacing the frame shows (its
-  /// narrowest gap between adjacent rows, when a lattice: see init_lattice_tolerance): the
-  /// paper's 0.3 m fit its 1 m beds, but a robot 0.09 m off a 0.75 m maize corridor's centre
-  /// has its near row 0.29 m away, and the tracker took the row beyond it (issues 10 / 11:
-  /// maize 0 / 3 with calibrated odometry)
+  /// [-] the same near edge never exceeds this fraction of the rows' lattice gap (see
+  /// init_lattice_tolerance): the paper's 0.3 m fit its 1 m beds, but a robot 0.09 m off a
+  /// 0.75 m maize corridor's centre has its near row 0.29 m away, and the tracker took the row
+  /// beyond it (issues 10 / 11: maize 0 / 5 with calibrated odometry)
   double init_min_spacing_ratio = 0.3;
-  /// [-] the frame's two narrowest gaps (> init_min_distance) make a lattice when the wider is
-  /// at most this fraction above the narrower; without one the near edge stays
-  /// init_min_distance (rownav)
+  /// [-] a frame's two narrowest gaps between adjacent rows' centre lines (> init_min_distance,
+  /// rows within max_steepness of the robot's heading) make a lattice when the wider is at most
+  /// this fraction above the narrower. The median of the recent frames' lattice gaps
+  /// (history_size frames, kept through a turn) sets the near edge (init_min_spacing_ratio) and
+  /// caps the far one (init_spacing_ratio); a model beyond that cap, or a followed pair wider
+  /// than the lattice, is dropped. Without a lattice the edges are the paper's (rownav)
   double init_lattice_tolerance = 0.25;
   double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
   /// [-] once the row spacing is measured (centre to centre, accepted frames), the same window
   /// reaches at least this fraction of it (issue 10: the paper's 3 m fit its vegetable beds; a
-  /// corridor row of a 5 m orchard stands up to ~4 m away, the next row a spacing farther)
+  /// corridor row of a 5 m orchard stands up to ~4 m away, the next row a spacing farther); and
+  /// never beyond this fraction of the rows' lattice gap (init_lattice_tolerance)
   double init_spacing_ratio = 0.9;
   /// [-] before any spacing is measured (the start, after a turn), the window reaches at least
   /// this fraction of the narrowest gap between the frame's adjacent rows: the corridor's rows
@@ -101,6 +104,8 @@ class ModelFilterTracker : public TrackerBase {
   std::string_view name() const override { return "model_filter"; }
   const ModelFilterConfig& config() const { return config_; }
   std::optional<core::DataFilterBoxes> data_filter(const core::Pose2& T_odom_base) const override;
+  /// A detected row the filter considers: finite geometry, not running across the robot's path.
+  static bool usable_row(const core::RowLine& r);
 
  protected:
   bool has_model() const override { return have_[0] || have_[1]; }
@@ -121,11 +126,17 @@ class ModelFilterTracker : public TrackerBase {
   double init_max() const;
   /// [m] the same for one frame: before any spacing is measured, init_frame_ratio x the
   /// narrowest gap between this frame's adjacent rows (a missing row widens a gap, never
-  /// narrows it), so that a field wider than 2 x init_max_distance can be entered at all.
+  /// narrows it), so that a field wider than 2 x init_max_distance can be entered at all;
+  /// never beyond init_spacing_ratio x the recent lattice gap.
   double init_max(const core::RowObservation& obs) const;
+  /// Remembers `obs`'s lattice gap (its two narrowest centre-to-centre gaps agree).
+  void observe_lattice(const core::RowObservation& obs);
+  /// Drops a side's model that stands beyond init_spacing_ratio lattice gaps while `obs` shows a
+  /// row on that side inside [near, that cap].
+  void drop_models_beyond_lattice(const core::RowObservation& obs, double near);
   /// [m] initialisation window's near edge: init_min_distance, or less in narrow rows
-  /// (init_min_spacing_ratio x the narrowest gap of `obs`'s rows when they form a lattice).
-  double init_min(const core::RowObservation& obs) const;
+  /// (init_min_spacing_ratio x the recent frames' median lattice gap).
+  double init_min() const;
   /// [m] the data-filter box half width in effect (box_spacing_ratio x the measured spacing).
   double box_half_width() const;
 
@@ -137,8 +148,9 @@ class ModelFilterTracker : public TrackerBase {
   // by odometry like the models: the end-of-row and row-end logic read it.
   Eigen::Vector2d first_[2], last_[2];
   int support_[2] = {0, 0};
-  int permanence_ = 0;                                // successive rejected frames
-  std::deque<double> spacings_;                       // accepted b_l - b_r
+  int permanence_ = 0;           // successive rejected frames
+  std::deque<double> spacings_;  // accepted b_l - b_r
+  std::deque<double> lattice_;   // recent frames' lattice gaps (kept through clear_models)
   std::deque<double> fir_lat_, fir_head_, fir_dist_;  // newest first
 };
 

@@ -122,6 +122,10 @@ class RowTracker {
     (void)T_odom_base;
     return std::nullopt;
   }
+  /// The robot is manoeuvring (a headland turn): its frames see the rows at every angle, and a
+  /// tracker keeps what it learnt of the field's geometry instead of learning from them. The
+  /// default ignores it.
+  virtual void set_manoeuvring(bool manoeuvring) { (void)manoeuvring; }
 };
 
 }  // namespace rownav::track

@@ -75,8 +75,11 @@ class TrackerBase : public RowTracker {
   RowTracking update(const core::RowObservation& obs, const core::Pose2& T_odom_base) final;
   void reset() final;
   const TrackerConfig& common() const { return common_; }
+  void set_manoeuvring(bool manoeuvring) final { manoeuvring_ = manoeuvring; }
 
  protected:
+  /// True between set_manoeuvring(true) and set_manoeuvring(false).
+  bool manoeuvring() const { return manoeuvring_; }
   /// True while the tracker holds row models.
   virtual bool has_model() const = 0;
   /// Forgets every model.
@@ -100,6 +103,9 @@ class TrackerBase : public RowTracker {
   /// The followed model on one side stands beyond a gap (follow_nearer_past_a_gap): a tracker
   /// that keeps one model per side drops it, to take the nearer row again when the gap ends.
   virtual void forget_side(bool /*left*/) {}
+  /// The followed pair was wrong (a tracker found it spans a row): its width no longer places a
+  /// single row's corridor centre; the spacing and canopy do until a new pair is measured.
+  void forget_corridor_width() { width_ = 0.0, width_frames_ = 0; }
 
  private:
   void fill_deviations(RowTracking& out);
@@ -126,6 +132,7 @@ class TrackerBase : public RowTracker {
   /// The followed pair's width of this frame (width_) and for how long it has held.
   void update_width(const RowTracking& out, double width);
 
+  bool manoeuvring_ = false;
   double width_ = 0.0;    // [m] last width between the followed rows' lines
   int width_frames_ = 0;  // successive frames the width held within width_tolerance
 };
