@@ -190,6 +190,37 @@ TEST(ModelFilterInit, RowsRunningAcrossTheRobotOrSeenInATurnTeachNoLattice) {
   }
 }
 
+TEST(ModelFilterInit, CrownFragmentsBetweenWideRowsTeachNoLattice) {
+  // A hedgerow orchard, 3.9 m rows: the detector also reports crown fragments 0.7 m apart
+  // beyond the left row in two frames of three; their gaps agree and read as a 0.7 m lattice,
+  // which closed the window on every row after a reset (zoo:1:33, 1:93 stopped perception_lost
+  // in the first corridor). Under half the followed pair's width, they teach nothing.
+  ModelFilterTracker tracker;
+  test::CorridorScene scene;
+  scene.spacing = 3.9;
+  std::mt19937_64 rng(19);
+  const core::Pose2 T(0.0, 0.0, 0.0);
+  double stamp = 0.0;
+  for (int i = 0; i < 30; ++i, stamp += 0.1) {
+    core::RowObservation obs = test::observe(scene, T, stamp, rng);
+    core::RowLine fragment = obs.rows.back();  // the far left row, 5.85 m
+    for (const double y : {2.65, 3.35}) {
+      if (i % 3 == 0) break;  // in two frames of three, as they come and go
+      fragment.line = core::Line2(Eigen::Vector2d(0.0, y), Eigen::Vector2d::UnitX());
+      fragment.offset = y;
+      obs.rows.push_back(fragment);
+    }
+    std::sort(obs.rows.begin(), obs.rows.end(),
+              [](const auto& a, const auto& b) { return a.offset < b.offset; });
+    tracker.update(obs, T);
+  }
+  tracker.reset();
+  const RowTracking out = tracker.update(test::observe(scene, T, stamp, rng), T);
+  ASSERT_EQ(out.status, TrackStatus::tracking);
+  EXPECT_GE(out.left, 0);
+  EXPECT_GE(out.right, 0);
+}
+
 TEST(ModelFilterInit, NarrowRowsKeepThePapersWindow) {
   // 2 m vineyard rows, robot 0.4 m off-centre: the frame's gaps give a window under the
   // paper's 3 m, which stays in force, and both corridor rows are taken.

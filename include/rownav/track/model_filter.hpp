@@ -40,7 +40,9 @@ struct ModelFilterConfig {
   /// this fraction above the narrower. The median of the recent frames' lattice gaps
   /// (history_size frames, kept through a turn) sets the near edge (init_min_spacing_ratio) and
   /// caps the far one (init_spacing_ratio); a model beyond that cap, or a followed pair wider
-  /// than the lattice, is dropped. Without a lattice the edges are the paper's (rownav)
+  /// than the lattice, is dropped. A lattice under half the followed pair's width (/ (1 + this))
+  /// is crown or trunk fragments and not learnt, nor is any while NavStack says the robot
+  /// manoeuvres. Without a lattice the edges are the paper's (rownav)
   double init_lattice_tolerance = 0.25;
   double init_max_distance = 3.0;  ///< [m] without a model: rows farther are ignored (ibid.)
   /// [-] once the row spacing is measured (centre to centre, accepted frames), the same window
