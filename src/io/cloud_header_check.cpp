@@ -71,6 +71,11 @@ PcdHeader read_pcd_header(std::istream& in, const std::string& name, core::Point
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.rfind("# rownav ", 0) == 0) has_meta = parse_rownav_comment(line, meta);
     if (line.empty() || line[0] == '#') continue;
+    // PCL 1.13 splits header lines on spaces, tabs and CRs only: a line of other control bytes
+    // (a vertical tab, pcd_fuzz) reaches its keyword switch empty and PCDReader::read crashes.
+    if (std::any_of(line.begin(), line.end(),
+                    [](unsigned char c) { return c < 0x20 && c != '\t'; }))
+      bad_pcd(name, n, "control character in a header line");
     auto w = words(line);
     if (w.empty()) continue;
     const std::string key = w[0];

@@ -199,6 +199,10 @@ TEST_F(CloudIoTest, HeadersPclWouldCrashOnAreRefusedWithTheirLine) {
               std::string::npos)
         << e;
   }
+  // A header line of control bytes (vertical tabs, pcd_fuzz): PCL 1.13 segfaults on it.
+  const std::string vt = error_of(write("vt.pcd", "VERSION 0.7\n\x0b\n" + body));
+  EXPECT_NE(vt.find("vt.pcd:line 2: not a valid PCD file (control character"), std::string::npos)
+      << vt;
   // More points than the data can hold: PCL would allocate them all.
   const std::string many =
       error_of(write("many.pcd",
@@ -240,8 +244,9 @@ TEST_F(CloudIoTest, DataThatPclWouldReadAsHeaderIsRefused) {
 // Found by the 600 s fuzz runs (issue 13, 2026-12-04).
 TEST_F(CloudIoTest, FuzzFoundValuesAndListsGiveOneLineErrorsOrDroppedPoints) {
   // A ring far outside 0..65535 (UBSan: double -> uint16 cast) is refused with its point.
-  const std::string head = "FIELDS x y z ring\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 2\nPOINTS 2\n"
-                           "DATA ascii\n";
+  const std::string head =
+      "FIELDS x y z ring\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 2\nPOINTS 2\n"
+      "DATA ascii\n";
   const std::string ring = error_of(write("r.pcd", head + "1 2 3 4\n1 2 3 13893600\n"));
   EXPECT_NE(ring.find("r.pcd:point 1: ring 13893600"), std::string::npos) << ring;
   EXPECT_NE(ring.find("is not in 0..65535"), std::string::npos) << ring;
@@ -254,8 +259,9 @@ TEST_F(CloudIoTest, FuzzFoundValuesAndListsGiveOneLineErrorsOrDroppedPoints) {
   ASSERT_EQ(big.size(), 1u);
   EXPECT_FLOAT_EQ(big.points[0].x, 1.0f);
   // A list property in the vertex element trips a PCL assertion: refused from the header.
-  const std::string list = error_of(
-      write("l.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\n"
+  const std::string list =
+      error_of(write("l.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\n"
                      "property double y\nproperty list uchar int vertex_indices\nend_header\n"
                      "1 2 3 7 1 0\n"));
   EXPECT_NE(list.find("l.ply:line 6: not a valid PLY file (list property 'vertex_indices' in "
