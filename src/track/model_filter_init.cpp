@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "rownav/core/statistics.hpp"
 #include "rownav/track/model_filter.hpp"
 
 namespace rownav::track {
@@ -27,13 +28,6 @@ std::vector<double> row_gaps(const core::RowObservation& obs, double min_gap, bo
     if (offsets[i] - offsets[i - 1] > min_gap) gaps.push_back(offsets[i] - offsets[i - 1]);
   std::sort(gaps.begin(), gaps.end());
   return gaps;
-}
-
-double median(std::deque<double> q) {
-  if (q.empty()) return 0.0;
-  const auto mid = q.begin() + static_cast<std::ptrdiff_t>(q.size() / 2);
-  std::nth_element(q.begin(), mid, q.end());
-  return *mid;
 }
 
 }  // namespace
@@ -62,7 +56,7 @@ double ModelFilterTracker::init_max(const core::RowObservation& obs) const {
   }
   // The rows' lattice caps it: in 0.75 m maize the paper's 3 m reached four corridors away, and
   // a side re-initialised on the next corridor's row while its near row was hidden (issue 10).
-  const double lattice = median(lattice_);
+  const double lattice = lattice_median_;
   return lattice > 0.0 ? std::min(window, config_.init_spacing_ratio * lattice) : window;
 }
 
@@ -85,10 +79,11 @@ void ModelFilterTracker::observe_lattice(const core::RowObservation& obs) {
     return;
   lattice_.push_back(gaps[0]);
   while (static_cast<int>(lattice_.size()) > config_.history_size) lattice_.pop_front();
+  lattice_median_ = core::median(lattice_);  // once per new gap, not per use
 }
 
 double ModelFilterTracker::init_min() const {
-  const double lattice = median(lattice_);
+  const double lattice = lattice_median_;
   if (!(lattice > 0.0)) return config_.init_min_distance;
   return std::min(config_.init_min_distance, config_.init_min_spacing_ratio * lattice);
 }
@@ -98,7 +93,7 @@ void ModelFilterTracker::drop_models_beyond_lattice(const core::RowObservation& 
   // that took the next corridor's row (in a turn's frames, with the near row hidden) and its box
   // holds it for good: dropped when this frame shows a row inside the window on its side, the
   // side re-initialises on it (issue 10: 0.75 m maize, a corridor two spacings wide followed).
-  const double lattice = median(lattice_);
+  const double lattice = lattice_median_;
   if (!(lattice > 0.0)) return;
   const double cap = config_.init_spacing_ratio * lattice;
   for (int s = 0; s < 2; ++s) {

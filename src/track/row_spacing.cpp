@@ -5,19 +5,12 @@
 #include <cmath>
 #include <vector>
 
+#include "rownav/core/statistics.hpp"
 #include "rownav/track/row_geometry.hpp"
 
 namespace rownav::track {
 
 namespace {
-
-double median_of(const std::deque<double>& q) {
-  if (q.empty()) return 0.0;
-  std::vector<double> v(q.begin(), q.end());
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 void push(std::deque<double>& q, double v, int window) {
   if (!std::isfinite(v)) return;
@@ -41,10 +34,10 @@ void RowSpacingEstimator::add(const core::RowObservation& obs) {
   }
 }
 
-double RowSpacingEstimator::spacing() const { return median_of(spacings_); }
-double RowSpacingEstimator::shift(bool left) const { return median_of(shifts_[left ? 1 : 0]); }
+double RowSpacingEstimator::spacing() const { return core::median(spacings_); }
+double RowSpacingEstimator::shift(bool left) const { return core::median(shifts_[left ? 1 : 0]); }
 double RowSpacingEstimator::half_width(bool left) const {
-  return median_of(half_widths_[left ? 1 : 0]);
+  return core::median(half_widths_[left ? 1 : 0]);
 }
 
 void RowSpacingEstimator::reset() {

@@ -153,6 +153,7 @@ class ModelFilterTracker : public TrackerBase {
   int permanence_ = 0;           // successive rejected frames
   std::deque<double> spacings_;  // accepted b_l - b_r
   std::deque<double> lattice_;   // recent frames' lattice gaps (kept through clear_models)
+  double lattice_median_ = 0.0;  // [m] median of lattice_ (0: none yet)
   std::deque<double> fir_lat_, fir_head_, fir_dist_;  // newest first
 };
 
