@@ -66,6 +66,13 @@ void RowNavCore::set_mount(const Eigen::Isometry3d& T_base_lidar) {
 }
 
 MissionAnswer RowNavCore::start() {
+  // A pause during which the robot was carried out of its rows or into another corridor: a
+  // resume would steer into whatever corridor is tracked now (issue 15). The pause stays.
+  if (!mission_.starts_new_mission(navigator().state()) && mission_.phase() == MissionPhase::paused)
+    if (auto why = stack_->resume_blocker())
+      return {false, "not resumed: " + *why +
+                         "; put the robot at a corridor's entrance, then ~stop and ~start a new "
+                         "mission (~mission, ~corridor_count)"};
   MissionAnswer a = mission_.start(navigator().state());
   if (a.new_mission) stack_->restart_mission();
   return a;

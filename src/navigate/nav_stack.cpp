@@ -105,6 +105,10 @@ void NavStack::restart_mission() {
   commanded_sum_ = measured_sum_ = 0.0;
   motion_last_T_.reset();
   nav_cmd_ = sent_cmd_ = {};
+  // A new mission from where the robot stands: the operator has placed it.
+  driven_ = hold_guards_resume_ = false;
+  hold_blocker_.reset();
+  resume_refused_.reset();
 }
 
 bool NavStack::on_encoders(const core::WheelEncoderSample& s) {
@@ -355,6 +359,12 @@ NavCommand NavStack::command(double stamp) {
   }
   if (held_ || config_.stack.mode != StackMode::navigate) out.cmd = {};
   if (config_.stack.mode == StackMode::navigate) {
+    if (!held_) driven_ = true;
+    if (!held_ && resume_refused_) {  // set_held(false) after a carry or a change of corridor
+      safe_stop(out, StopReason::moved_while_held, stamp,
+                "resumed after the hold: " + *resume_refused_);
+      resume_refused_.reset();
+    }
     apply(out);
     watch_budget(out, stamp, T);
     if (!terminal(out.state)) watch_odometry(out, stamp, T);

@@ -115,16 +115,49 @@ void NavStack::watch_odometry(NavOutput& out, double stamp, const std::optional<
 void NavStack::set_held(bool held) {
   // A new hold watches from the rows as the last frame tracked them: a robot carried off at the
   // pause's first instant is as moved as one pushed later.
-  if (held && !held_) hold_reference_ = last_tracked_, hold_reported_ = false;
+  if (held && !held_) {
+    hold_reference_ = last_tracked_, hold_reported_ = false;
+    hold_blocker_.reset();
+    // The wait before a start is when the operator places the robot: only a pause in a row of
+    // a mission that has driven guards its resume (in a manoeuvre no corridor is tracked).
+    hold_guards_resume_ = driven_ && navigator_->state() == NavState::in_row;
+  }
+  if (!held && held_ && hold_guards_resume_ && hold_blocker_) resume_refused_ = hold_blocker_;
   held_ = held;
 }
 
+std::optional<std::string> NavStack::resume_blocker() const {
+  if (held_ && hold_guards_resume_) return hold_blocker_;
+  return std::nullopt;
+}
+
 void NavStack::watch_hold(const FrameReport& report, NavOutput& out, double stamp) {
-  const bool tracked = report.tracking && report.tracking->status == track::TrackStatus::tracking;
-  if (tracked)
-    last_tracked_ = Eigen::Vector2d(report.tracking->lateral_error, report.tracking->heading_error);
-  if (!held_ || hold_reported_) return;
+  if (!report.tracking) return;  // no pose at the frame: nothing was tracked
+  const track::RowTracking& t = *report.tracking;
+  const bool tracked = t.status == track::TrackStatus::tracking;
+  const bool lost = t.status == track::TrackStatus::lost;
   const auto& w = config_.stack.watchdog;
+  if (held_ && hold_guards_resume_ && !hold_blocker_ && hold_reference_) {
+    // Out of the corridor: on or past a followed row (the offset moved half a spacing since the
+    // hold began), or in another corridor (the offset jumps by about a spacing in one tracked
+    // frame, a coasting gap between the two included).
+    const double spacing = t.row_spacing > 0.0 ? t.row_spacing : t.corridor_width;
+    const double limit = w.held_corridor_fraction * spacing;
+    const double step = tracked && last_tracked_ ? t.lateral_error - last_tracked_->x() : 0.0;
+    const double moved = tracked ? t.lateral_error - hold_reference_->x() : 0.0;
+    const std::string rows = ", rows " + fixed(100.0 * spacing) + " cm apart";
+    if (lost)
+      hold_blocker_ = "the rows tracked when the hold began were lost (carried out of them?)";
+    else if (spacing > 0.0 && std::abs(step) > limit)
+      hold_blocker_ = "the tracked corridor centre jumped " + fixed(100.0 * step) +
+                      " cm in one frame" + rows + ": pushed into another corridor";
+    else if (spacing > 0.0 && std::abs(moved) > limit)
+      hold_blocker_ = "pushed " + fixed(100.0 * moved) + " cm sideways" + rows +
+                      ": onto or past a row of its corridor";
+  }
+  if (tracked) last_tracked_ = Eigen::Vector2d(t.lateral_error, t.heading_error);
+  if (lost && !held_) last_tracked_.reset();  // a hold begun now has no rows to watch from
+  if (!held_ || hold_reported_) return;
   std::string why;
   if (tracked) {
     if (!hold_reference_) hold_reference_ = last_tracked_;
@@ -133,7 +166,7 @@ void NavStack::watch_hold(const FrameReport& report, NavOutput& out, double stam
         std::abs(moved.y()) > w.held_move_heading_deg * std::numbers::pi / 180.0)
       why = "moved " + fixed(100.0 * moved.x()) + " cm sideways and " +
             fixed(moved.y() * 180.0 / std::numbers::pi) + " deg";
-  } else if (hold_reference_) {
+  } else if (hold_reference_) {  // coasting already: the rows are not seen
     why = "the rows tracked when the hold began are lost";
   }
   if (why.empty()) return;

@@ -121,5 +121,84 @@ TEST(NavStackHold, AMoveWhileNotHeldIsNoHoldEvent) {
   EXPECT_TRUE(moves(stand(s, 0.0, 4.0, [](double t) { return std::min(0.1 * t, 0.3); })).empty());
 }
 
+// The resume guard (issue 15): a pause in a row of a mission that has driven may only resume in
+// the corridor it began in. A robot pushed over a row (a row crop's robot straddles it) ends the
+// resume in a safe stop; a push inside the corridor, and any move while waiting for the start
+// (the operator placing the robot), resume as before.
+
+/// Pushed `distance` to the left over `seconds` (0.3 m/s or slower), from t = 2 s.
+auto pushed(double distance, double seconds) {
+  return [=](double t) { return std::clamp(distance * (t - 2.0) / seconds, 0.0, distance); };
+}
+
+bool drives(const std::vector<NavCommand>& cmds) {
+  return std::any_of(cmds.begin(), cmds.end(), [](const NavCommand& c) { return c.cmd.v > 0.0; });
+}
+
+TEST(NavStackResume, APushInsideTheCorridorResumesAndSteersBack) {
+  NavStack s = make_stack();
+  ASSERT_TRUE(drives(stand(s, 0.0, 1.0, still)));
+  s.set_held(true);
+  const auto push = pushed(0.3, 2.0);  // a sixth of the 1.8 m spacing
+  const auto held = stand(s, 1.0, 4.0, push);
+  EXPECT_EQ(moves(held).size(), 1u);  // reported while held, as before
+  EXPECT_FALSE(s.resume_blocker()) << *s.resume_blocker();
+  s.set_held(false);
+  const auto resumed = stand(s, 5.0, 1.0, [&](double t) { return push(t); });
+  EXPECT_EQ(resumed.back().state, NavState::in_row);
+  EXPECT_TRUE(drives(resumed));
+}
+
+TEST(NavStackResume, APushIntoTheNextCorridorEndsTheResumeInASafeStop) {
+  NavStack s = make_stack();
+  ASSERT_TRUE(drives(stand(s, 0.0, 1.0, still)));
+  s.set_held(true);
+  const auto push = pushed(1.8, 6.0);  // one spacing: the next corridor's centre
+  stand(s, 1.0, 8.0, push);
+  const auto why = s.resume_blocker();
+  ASSERT_TRUE(why);
+  std::printf("pushed one spacing while held: %s\n", why->c_str());
+  s.set_held(false);
+  const auto resumed = stand(s, 9.0, 0.5, push);
+  EXPECT_EQ(resumed.front().state, NavState::safe_stop);
+  EXPECT_EQ(resumed.front().stop_reason, StopReason::moved_while_held);
+  EXPECT_FALSE(drives(resumed));
+  // A new mission from where it stands (the operator has put it in a corridor) drives again.
+  s.restart_mission();
+  const auto again = stand(s, 9.5, 1.0, [](double) { return 0.0; });
+  EXPECT_EQ(again.back().state, NavState::in_row);
+  EXPECT_TRUE(drives(again));
+}
+
+TEST(NavStackResume, RowsLostDuringAPauseEndTheResumeInASafeStop) {
+  NavStack s = make_stack();
+  ASSERT_TRUE(drives(stand(s, 0.0, 1.0, still)));
+  s.set_held(true);
+  stand(s, 1.0, 1.0, still);
+  // Carried off for 4 s: no rows, longer than the tracker coasts (TrackerConfig max_coast_time)
+  stand(s, 2.0, 4.0, still, false);
+  stand(s, 6.0, 1.0, still);  // and back where it was, as far as the rows tell
+  ASSERT_TRUE(s.resume_blocker());
+  EXPECT_NE(s.resume_blocker()->find("lost"), std::string::npos) << *s.resume_blocker();
+  s.set_held(false);
+  const auto resumed = stand(s, 7.0, 0.5, still);
+  EXPECT_EQ(resumed.front().stop_reason, StopReason::moved_while_held);
+  EXPECT_FALSE(drives(resumed));
+}
+
+TEST(NavStackResume, RowsLostBeforeTheMissionDroveAreTheOperatorPlacingTheRobot) {
+  // The same carry as RowsLostDuringAPauseEndTheResumeInASafeStop, while waiting for the start.
+  NavStack s = make_stack();
+  s.set_held(true);
+  stand(s, 0.0, 2.0, still);
+  stand(s, 2.0, 4.0, still, false);
+  stand(s, 6.0, 1.0, still);
+  EXPECT_FALSE(s.resume_blocker()) << *s.resume_blocker();
+  s.set_held(false);
+  const auto started = stand(s, 7.0, 1.0, still);
+  EXPECT_EQ(started.back().state, NavState::in_row);
+  EXPECT_TRUE(drives(started));
+}
+
 }  // namespace
 }  // namespace rownav::navigate

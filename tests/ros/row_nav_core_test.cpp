@@ -23,6 +23,20 @@ rb::FrameResult steps(rb::RowNavCore& core, Sweeps& sweeps, const Scene& scene, 
   return r;
 }
 
+/// A robot at the centre of corridor 2, driven for 0.5 s (`driven`: the last frame's result),
+/// and the scene `offset` m to its left where a pause will carry it (`after`).
+struct Carry {
+  explicit Carry(double offset) : before(0.0, 0.0), after(offset, 0.0) {
+    core.set_mount(sweeps_before.mount());
+    driven = steps(core, sweeps_before, before, t);
+  }
+  Scene before, after;
+  rb::RowNavCore core{vineyard_setup()};
+  Sweeps sweeps_before{before}, sweeps_after{after};
+  double t = 100.0;
+  rb::FrameResult driven;
+};
+
 }  // namespace
 
 TEST(RowNavCore, DrivesForwardAndSeesTheOffset) {
@@ -165,12 +179,8 @@ TEST(RowNavCore, APauseKeepsTrackingSoTheResumeStartsFromWhereTheRowsAreNow) {
   // first command after the resume already steers back (issue 15: a pause no longer holds
   // frames back from the tracker).
   const double carried = 0.15;
-  const Scene before(0.0, 0.0), after(carried, 0.0);
-  rb::RowNavCore core(vineyard_setup());
-  Sweeps sweeps_before(before), sweeps_after(after);
-  core.set_mount(sweeps_before.mount());
-  double t = 100.0;
-  rb::FrameResult r = steps(core, sweeps_before, before, t);
+  Carry c(carried);
+  auto& [before, after, core, sweeps_before, sweeps_after, t, r] = c;
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_NEAR(r.tracking.lateral_error, 0.0, 0.05);
   ASSERT_TRUE(core.pause().success);
@@ -199,6 +209,35 @@ TEST(RowNavCore, APauseKeepsTrackingSoTheResumeStartsFromWhereTheRowsAreNow) {
   const auto cmd = core.on_odom(odom_msg(t + 0.1, before.pose));
   ASSERT_TRUE(cmd);
   EXPECT_LT(cmd->omega, 0.0);  // left of the centre line: steers right at once
+}
+
+TEST(RowNavCore, AStartAfterThePausedRobotWasCarriedOutOfItsRowsIsRefused) {
+  // Carried 15 m to the left (out of the 6-row vineyard) for 4 s, longer than the tracker
+  // coasts, then back: the rows cannot tell which corridor it was put back in, so ~start does
+  // not resume; ~stop and ~start begin a new mission from where it stands (issue 15).
+  Carry c(15.0);
+  auto& [before, away, core, sweeps_before, sweeps_away, t, r] = c;
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_GT(r.cmd.v, 0.0);
+  ASSERT_TRUE(core.pause().success);
+  for (int k = 0; k < 40; ++k, t += 0.1) step(core, sweeps_away, before.pose, t);
+  r = steps(core, sweeps_before, before, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.tracking.status, rownav::track::TrackStatus::tracking);
+  const rb::MissionAnswer refused = core.start();
+  EXPECT_FALSE(refused.success);
+  EXPECT_NE(refused.message.find("not resumed"), std::string::npos) << refused.message;
+  EXPECT_EQ(core.state_name(core.navigator().state()), "paused");
+  r = steps(core, sweeps_before, before, t);
+  expect_zero(r.cmd);
+  ASSERT_TRUE(core.stop().success);
+  const rb::MissionAnswer started = core.start();
+  EXPECT_TRUE(started.success) << started.message;
+  EXPECT_TRUE(started.new_mission);
+  r = steps(core, sweeps_before, before, t);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.state, rownav::navigate::NavState::in_row);
+  EXPECT_GT(r.cmd.v, 0.0);
 }
 
 namespace {

@@ -139,9 +139,17 @@ class NavStack {
   /// reported, and the time of a hold in an odometry-closed manoeuvre counts into its budget.
   /// A hold also watches the rows: when they say the robot moved (StackConfig::watchdog
   /// held_move_lateral / held_move_heading_deg) or are lost, the event moved_while_held is sent
-  /// once per hold.
+  /// once per hold. A hold that began in a row after the mission had driven (an operator's
+  /// pause, not the wait before a start, when the operator places the robot) also guards the
+  /// resume: if the rows were lost during it, or the robot left the corridor
+  /// (held_corridor_fraction), releasing it ends the mission in a safe stop `moved_while_held`
+  /// instead of steering into whatever corridor is tracked then; restart_mission() begins again
+  /// from where it stands.
   void set_held(bool held);
   bool held() const { return held_; }
+  /// While held: why releasing the hold would end in a safe stop (the robot was carried out of
+  /// the rows or into another corridor), or nullopt when it may resume.
+  std::optional<std::string> resume_blocker() const;
 
   /// T_odom_base at `stamp` from the configured source (nullopt before any odometry).
   std::optional<core::Pose2> T_odom_base(double stamp) const;
@@ -216,6 +224,10 @@ class NavStack {
   // when the hold began, and whether the move was reported.
   std::optional<Eigen::Vector2d> last_tracked_, hold_reference_;
   bool hold_reported_ = false;
+  // Resume guard: whether the mission has commanded since it began, whether the current hold
+  // guards its resume, why it may not resume, and a refused resume still to be applied.
+  bool driven_ = false, hold_guards_resume_ = false;
+  std::optional<std::string> hold_blocker_, resume_refused_;
 };
 
 }  // namespace rownav::navigate

@@ -66,6 +66,14 @@ struct WatchdogConfig {
   /// the tracker takes that corridor for its own
   double held_move_lateral = 0.1;       ///< [m]
   double held_move_heading_deg = 10.0;  ///< [deg] the same for the heading to the corridor
+  /// A hold that began in a row after the mission had driven also decides whether the robot may
+  /// resume (NavStack::resume_blocker): when the tracked offset from the corridor centre moves
+  /// by more than this fraction of the tracked row spacing since the hold began (the robot
+  /// stands on or beyond a followed row), or from one tracked frame to the next (the tracker
+  /// took another corridor: neighbouring corridor centres lie one spacing apart, and a push
+  /// moves the robot a few centimetres between two frames), the resume is a safe stop
+  /// `moved_while_held` instead (issue 15). Half a spacing: a row's centre line
+  double held_corridor_fraction = 0.5;  ///< [-] of the row spacing
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -79,6 +87,7 @@ struct WatchdogConfig {
     v("plausibility_ratio", s.plausibility_ratio);
     v("held_move_lateral", s.held_move_lateral);
     v("held_move_heading_deg", s.held_move_heading_deg);
+    v("held_corridor_fraction", s.held_corridor_fraction);
   }
   void validate() const {
     core::check_positive(lidar_timeout, "lidar_timeout");
@@ -91,6 +100,7 @@ struct WatchdogConfig {
     core::check_range(plausibility_ratio, 0.0, 1.0, "plausibility_ratio");
     core::check_positive(held_move_lateral, "held_move_lateral");
     core::check_range(held_move_heading_deg, 0.1, 180.0, "held_move_heading_deg");
+    core::check_range(held_corridor_fraction, 0.05, 1.0, "held_corridor_fraction");
   }
 };
 

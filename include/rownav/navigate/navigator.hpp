@@ -53,8 +53,11 @@ enum class StopReason : std::uint8_t {
   obstacle,
   place_contradicts_plan,
   timeout,
-  budget_exceeded,      ///< a state took far longer / farther than planned (NavStack's watchdog)
-  odometry_implausible  ///< commanded motion the odometry did not see (NavStack's watchdog)
+  budget_exceeded,       ///< a state took far longer / farther than planned (NavStack's watchdog)
+  odometry_implausible,  ///< commanded motion the odometry did not see (NavStack's watchdog)
+  /// resumed after the robot was carried out of the tracked rows or into another corridor
+  /// during a hold (NavStack::resume_blocker, issue 15)
+  moved_while_held
 };
 /// Something that happened (events timeline of the report).
 enum class NavEventKind : std::uint8_t {
@@ -353,7 +356,7 @@ struct rownav::core::EnumNames<rownav::navigate::NavState> {
 template <>
 struct rownav::core::EnumNames<rownav::navigate::StopReason> {
   using E = rownav::navigate::StopReason;
-  static constexpr std::array<std::pair<E, std::string_view>, 8> values{
+  static constexpr std::array<std::pair<E, std::string_view>, 9> values{
       {{E::none, "none"},
        {E::done, "done"},
        {E::perception_lost, "perception_lost"},
@@ -361,7 +364,8 @@ struct rownav::core::EnumNames<rownav::navigate::StopReason> {
        {E::place_contradicts_plan, "place_contradicts_plan"},
        {E::timeout, "timeout"},
        {E::budget_exceeded, "budget_exceeded"},
-       {E::odometry_implausible, "odometry_implausible"}}};
+       {E::odometry_implausible, "odometry_implausible"},
+       {E::moved_while_held, "moved_while_held"}}};
 };
 
 template <>

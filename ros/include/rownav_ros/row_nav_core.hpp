@@ -102,7 +102,9 @@ class RowNavCore {
 
   /// Operator requests (MissionControl, with the navigator's current state). A start after a
   /// stop or after the navigator ended the mission begins a new one where the robot stands
-  /// (NavStack::restart_mission: the odom frame continues).
+  /// (NavStack::restart_mission: the odom frame continues). A resume after a pause during which
+  /// the robot was carried out of its rows or into another corridor (NavStack::resume_blocker)
+  /// is refused with the reason, and the mission stays paused (issue 15).
   MissionAnswer start();
   /// start(), and a start that begins a new mission reads the mission afresh: `node`'s mission
   /// file and corridor_count (an operator sets `~mission` / `~corridor_count`, puts the robot at
