@@ -212,11 +212,13 @@ void add_run_command(CLI::App& app) {
                 "where config/detect/<crop>.yaml and config/navigate/<crop>.yaml are looked up "
                 "when --detect-config / --nav-config are not given (default config)");
   c->add_option("--row-end-policy", a->row_end_policy,
-                "row-end poles policy in the headland: nearest, line_fitting (default)")
+                "each row end's point in the headland: nearest, line_fitting (Bertoglio 2023 "
+                "sec. II-C) or end_slice (rownav; default: the nav config's row_ends.policy)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, navigate::RowEndPolicy>{
               {"nearest", navigate::RowEndPolicy::nearest},
-              {"line_fitting", navigate::RowEndPolicy::line_fitting}},
+              {"line_fitting", navigate::RowEndPolicy::line_fitting},
+              {"end_slice", navigate::RowEndPolicy::end_slice}},
           CLI::ignore_case));
   c->add_option("--faults", a->faults,
                 "faults YAML (config/faults): its `faults:` section (sim::FaultsConfig) replaces "

@@ -125,17 +125,32 @@ void add_bertoglio(const std::vector<CellResult>& all, std::vector<ResultTable>&
     return std::vector<std::string>{c.field_name(),
                                     c.row_end_policy.empty() ? "default" : c.row_end_policy};
   });
+  // 003 Table II: every turn frame's end points against the pole centres (its measure), beside
+  // the paper's simulation column and the row ends rownav's end of row estimated in the rows.
   ResultTable t2{"bertoglio_003_table2",
                  "003 Table II (Bertoglio 2023): row-end point error per policy",
                  {"field", "row-end policy"},
-                 {"runs", "row-end error mean [m]", "row-end error max [m]"},
+                 {"runs", "turn end points", "not row ends", "pole error mean [m]",
+                  "pole error max [m]", "pole error min [m]", "paper mean [m]", "paper max [m]",
+                  "paper min [m]", "estimated row end error mean [m]"},
                  {},
-                 1};
-  for (const auto& g : by_policy)
+                 3};
+  for (const auto& g : by_policy) {
+    const auto paper = bertoglio_2023_pole_figures(g.labels[1]);
+    const auto fig = [&](double BertoglioPoleFigures::*m) -> Value {
+      return paper ? Value((*paper).*m) : std::nullopt;
+    };
     t2.rows.push_back(
         {g.labels,
-         {double(g.runs.size()), aggregate(g.runs, "row_end_error_mean", Aggregate::mean),
-          aggregate(g.runs, "row_end_error_max", Aggregate::max)}});
+         {double(g.runs.size()), aggregate(g.runs, "turn_row_end_points", Aggregate::sum),
+          aggregate(g.runs, "turn_row_end_spurious", Aggregate::sum),
+          aggregate(g.runs, "turn_row_end_error_mean", Aggregate::mean),
+          aggregate(g.runs, "turn_row_end_error_max", Aggregate::max),
+          aggregate(g.runs, "turn_row_end_error_min", Aggregate::min),
+          fig(&BertoglioPoleFigures::mean), fig(&BertoglioPoleFigures::max),
+          fig(&BertoglioPoleFigures::min),
+          aggregate(g.runs, "row_end_error_mean", Aggregate::mean)}});
+  }
   out.push_back(std::move(t2));
 }
 
@@ -264,6 +279,8 @@ std::optional<double> aggregate(const std::vector<const RunSummary*>& runs, cons
     case Aggregate::median:
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    case Aggregate::sum:
+      return std::accumulate(v.begin(), v.end(), 0.0);
   }
   return std::nullopt;
 }

@@ -218,6 +218,8 @@ void record(navigate::NavCommand& out, const navigate::NavStack& stack, const si
   const core::Pose2 T = stack.T_odom_base(sim.time()).value_or(core::Pose2());
   for (std::size_t k = result.row_ends_world.size(); k < ends.size(); ++k)
     result.row_ends_world.push_back(sim.robot_state().pose * (T.inverse() * ends[k]));
+  for (const auto& p : out.row_end_points)  // 003 Table II: each turn frame's end points
+    result.turn_row_ends_world.push_back({out.stamp, sim.robot_state().pose * (T.inverse() * p)});
   result.served = out.served;
   if (out.frame && out.frame->place)
     result.places.push_back({out.stamp, out.place, sim.ground_truth().place});

@@ -1,4 +1,5 @@
-// Malavazi 2018 Tables 1-3 (004_1bee156ef8a2b3f7.txt), copied from the paper's text.
+// Malavazi 2018 Tables 1-3 (004_1bee156ef8a2b3f7.txt) and Bertoglio 2023 Tables I-II
+// (003_25dc0df51a1e5faf.txt, simulation), copied from the papers' text.
 #include "rownav/io/paper_figures.hpp"
 
 #include <array>
@@ -49,6 +50,12 @@ std::optional<int> weed_level_of(std::string_view field_name) {
   constexpr std::array<std::string_view, 3> suffix = {"_weeds_none", "_weeds_some", "_weeds_many"};
   for (std::size_t i = 0; i < suffix.size(); ++i)
     if (field_name.ends_with(suffix[i])) return static_cast<int>(i) + 1;
+  return std::nullopt;
+}
+
+std::optional<BertoglioPoleFigures> bertoglio_2023_pole_figures(std::string_view policy) {
+  if (policy == "nearest") return BertoglioPoleFigures{0.205, 0.540, 0.038};
+  if (policy == "line_fitting") return BertoglioPoleFigures{0.155, 0.363, 0.013};
   return std::nullopt;
 }
 

@@ -140,29 +140,70 @@ void fill_tracking(const RunResult& run, RunSummary& r) {
   r.corridor_width_min = width.lo();
 }
 
+/// The true row ends of a block: each row's two ends (its last plant or end post) with the
+/// outward direction there (the row's last segment, pointing off the row).
+std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> true_row_ends(const sim::FieldTruth& truth,
+                                                                       int block) {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> out;
+  for (int row : truth.block_rows(block)) {
+    const auto& line = truth.field().rows[static_cast<std::size_t>(row)].polyline;
+    const std::size_t n = line.size();
+    if (n < 2) continue;
+    out.emplace_back(line.front(), (line.front() - line[1]).normalized());
+    out.emplace_back(line.back(), (line.back() - line[n - 2]).normalized());
+  }
+  return out;
+}
+
+/// The nearest of `ends` to `p`: its distance, and p's offset along the row (+ past the end).
+std::pair<double, double> nearest_end(
+    const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& ends,
+    const Eigen::Vector2d& p) {
+  double best = 1e300, best_along = 0.0;
+  for (const auto& [end, out] : ends) {
+    const double d = (end - p).norm();
+    if (d < best) best = d, best_along = (p - end).dot(out);
+  }
+  return {best, best_along};
+}
+
 /// Each estimated row end against the nearest true one of the block: the distance, and the
 /// offset along the row, + past the end into the headland, - short of it inside the row.
+/// And 003 Table II: the turn frames' row-end points against the nearest true row end.
 void fill_row_ends(const RunResult& run, const sim::FieldTruth& truth, int block, RunSummary& r) {
-  Stats ends, along;
+  const auto truth_ends = true_row_ends(truth, block);
+  Stats ends, along, turn;
   for (const auto& p : run.row_ends_world) {
-    double best = 1e300, best_along = 0.0;
-    for (int row : truth.block_rows(block)) {
-      const auto& line = truth.field().rows[static_cast<std::size_t>(row)].polyline;
-      const std::size_t n = line.size();
-      // Outward directions at the two ends (the row's last segment, pointing off the row).
-      const std::pair<Eigen::Vector2d, Eigen::Vector2d> sides[2] = {
-          {line.front(), (line.front() - line[1]).normalized()},
-          {line.back(), (line.back() - line[n - 2]).normalized()}};
-      for (const auto& [end, out] : sides) {
-        const double d = (end - p).norm();
-        if (d < best) best = d, best_along = (p - end).dot(out);
-      }
-    }
-    ends.add(best);
-    along.add(best_along);
+    const auto [d, a] = nearest_end(truth_ends, p);
+    ends.add(d);
+    along.add(a);
   }
   r.row_end_error_mean = ends.mean(), r.row_end_error_max = ends.hi();
   r.row_end_along_mean = along.mean();
+  // A point nearer another point than to any true end by half their spacing is no row end.
+  double gap = 1e300;
+  for (std::size_t i = 0; i < truth_ends.size(); ++i)
+    for (std::size_t j = i + 1; j < truth_ends.size(); ++j)
+      gap = std::min(gap, (truth_ends[i].first - truth_ends[j].first).norm());
+  // Per frame (one stamp), each true row end against the frame's nearest end point (003: "the
+  // distance from the real pole centre to the end point detected"): a vine cluster a metre
+  // into the row is no detection of the pole, only counted as a point.
+  const auto& pts = run.turn_row_ends_world;
+  for (std::size_t i = 0; i < pts.size();) {
+    std::size_t j = i;
+    while (j < pts.size() && pts[j].stamp == pts[i].stamp) ++j;
+    for (const auto& [end, out] : truth_ends) {
+      double best = 1e300;
+      for (std::size_t k = i; k < j; ++k) best = std::min(best, (pts[k].world - end).norm());
+      if (best <= 0.5 * gap) turn.add(best);
+    }
+    for (std::size_t k = i; k < j; ++k)
+      r.turn_row_end_spurious += nearest_end(truth_ends, pts[k].world).first > 0.5 * gap;
+    i = j;
+  }
+  r.turn_row_end_points = turn.n;
+  r.turn_row_end_error_mean = turn.mean(), r.turn_row_end_error_max = turn.hi();
+  r.turn_row_end_error_min = turn.lo();
 }
 
 }  // namespace

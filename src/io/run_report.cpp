@@ -1,5 +1,5 @@
 // Run report: summary.json, report.html (inline SVGs), top_view.svg / .png, lateral_error.png,
-// speed.png, trajectory.csv.
+// speed.png, trajectory.csv, row_end_points.csv (the turns' row-end points, when there were turns).
 #include "rownav/io/run_report.hpp"
 
 #include <cmath>
@@ -62,6 +62,9 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
       {"row ends (estimated)", Style{Color::hex("#d62728"), Color::hex("#d62728"), 1.0, true}});
   if (!run.crushes.empty())
     o.extra_legend.push_back({"plant crushed", Style{Color::hex("#000000"), {}, 2.0}});
+  const Color turn_ends = Color::hex("#17becf");  // the turns' row-end points (003 Table II)
+  if (!run.turn_row_ends_world.empty())
+    o.extra_legend.push_back({"row-end points in turns", Style{turn_ends, turn_ends, 1.0, true}});
   const Color key_colour = Color::hex("#9467bd");  // the map stage's key locations (issue 12)
   if (!run.key_locations.empty())
     o.extra_legend.push_back({"key locations (map)", Style{key_colour, key_colour, 1.0, true}});
@@ -76,6 +79,7 @@ void draw_top_view(Canvas& canvas, const RunResult& run, const sim::Field& field
     draw_path(canvas, seg, Style{state_colour(run.samples[i].state), {}, 2.0});
     seg.clear();
   }
+  for (const auto& p : run.turn_row_ends_world) canvas.dot(p.world, 1.5, turn_ends);
   for (const auto& p : run.row_ends_world) canvas.dot(p, 4.0, Color::hex("#d62728"));
   for (const auto& c : run.crushes)  // a ring round each crushed plant, at least 0.15 m
     canvas.circle(c.position, std::max(c.radius, kCrushRingMin),
@@ -203,6 +207,11 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   j["row_end_error_mean"] = num(s.row_end_error_mean);
   j["row_end_error_max"] = num(s.row_end_error_max);
   j["row_end_along_mean"] = num(s.row_end_along_mean);
+  j["turn_row_end_error_mean"] = num(s.turn_row_end_error_mean);
+  j["turn_row_end_error_max"] = num(s.turn_row_end_error_max);
+  j["turn_row_end_error_min"] = num(s.turn_row_end_error_min);
+  j["turn_row_end_points"] = s.turn_row_end_points;
+  j["turn_row_end_spurious"] = s.turn_row_end_spurious;
   j["frame_latency_median_ms"] = num(s.frame_latency_median_ms);
   j["frame_latency_p99_ms"] = num(s.frame_latency_p99_ms);
   j["track_lateral_error_rmse"] = num(s.track_lateral_error_rmse);
@@ -265,6 +274,14 @@ void write_run_report(const fs::path& partial, const RunResult& run, const RunSu
   lateral.save(partial / "lateral_error.png");
   speed.save(partial / "speed.png");
   write_text(partial / "trajectory.csv", trajectory_csv(run));
+  if (!run.turn_row_ends_world.empty()) {  // 003 Table II's raw data: every turn frame's ends
+    std::ostringstream c;
+    c.precision(9);
+    c << "stamp,x,y\n";
+    for (const auto& p : run.turn_row_ends_world)
+      c << p.stamp << "," << p.world.x() << "," << p.world.y() << "\n";
+    write_text(partial / "row_end_points.csv", c.str());
+  }
 }
 
 }  // namespace rownav::io

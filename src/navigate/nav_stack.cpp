@@ -382,6 +382,7 @@ NavCommand NavStack::command(double stamp) {
   c.corridor = out.corridor;
   c.served = out.served;
   c.events = std::move(out.events);
+  c.row_end_points = std::move(out.row_end_points);
   if (place_) c.place = place_->place();
   return c;
 }

@@ -61,6 +61,7 @@ void Navigator::turning(const NavInput* in, const core::Pose2& T, NavOutput& out
     const RowEnds re = estimate_row_ends(in->points_base, heading_base, spacing_, config_.row_ends);
     for (const auto& p : re.poles)
       if (p.allFinite()) ends.push_back(T * p);
+    out.row_end_points = ends;
   }
   const ManoeuvreStep s = manoeuvre_->step(T, ends);
   if (in != nullptr) {

@@ -70,7 +70,67 @@ Eigen::Vector2d end_slice_centroid(const std::vector<Eigen::Vector2d>& uv,
   return sum / std::max(n, 1);
 }
 
-// Nearest policy (003 sec. II-C): the nearest pole to the robot on each side (v > 0 left).
+// Nearest policy (003 sec. II-C): "the nearest cluster point to the robot center, which is
+// surrounded by a minimum number of points at a threshold distance" (a stray return next to the
+// cluster is no end point). Members by distance to the robot (the origin), the first supported.
+int nearest_supported(const std::vector<Eigen::Vector2d>& uv, std::vector<int> members,
+                      const RowEndConfig& c) {
+  std::sort(members.begin(), members.end(), [&](int a, int b) {
+    return uv[a].squaredNorm() < uv[b].squaredNorm() ||
+           (uv[a].squaredNorm() == uv[b].squaredNorm() && a < b);
+  });
+  const double r2 = c.nearest_radius * c.nearest_radius;
+  for (const int i : members) {
+    int around = 0;
+    for (const int j : members) around += j != i && (uv[j] - uv[i]).squaredNorm() <= r2;
+    if (around >= c.nearest_min_neighbours) return i;
+  }
+  return members.front();  // no point is supported: the nearest one
+}
+
+// The line through `members` by RANSAC (003 sec. II-C: 100 iterations, 0.1 m), refined by total
+// least squares on its inliers: a point on it and its direction; nullopt under two points.
+std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> cluster_line(
+    const std::vector<Eigen::Vector2d>& uv, const std::vector<int>& members, const RowEndConfig& c,
+    std::mt19937_64& rng) {
+  const int n = static_cast<int>(members.size());
+  if (n < 2) return std::nullopt;
+  std::uniform_int_distribution<int> pick(0, n - 1);
+  std::vector<int> best, in;
+  for (int it = 0; it < c.ransac_iterations; ++it) {
+    const Eigen::Vector2d a = uv[members[pick(rng)]], d = uv[members[pick(rng)]] - a;
+    if (d.norm() < 1e-6) continue;
+    const Eigen::Vector2d normal(-d.normalized().y(), d.normalized().x());
+    in.clear();
+    for (const int i : members)
+      if (std::abs(normal.dot(uv[i] - a)) <= c.ransac_threshold) in.push_back(i);
+    if (in.size() > best.size()) best.swap(in);
+  }
+  if (best.size() < 2) return std::nullopt;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const int i : best) mean += uv[i];
+  mean /= double(best.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const int i : best) cov += (uv[i] - mean) * (uv[i] - mean).transpose();
+  return std::make_pair(
+      mean,
+      Eigen::Vector2d(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvectors().col(1)));
+}
+
+// The end point of one cluster by the configured policy, in row coordinates.
+Eigen::Vector2d end_point(const std::vector<Eigen::Vector2d>& uv, const std::vector<int>& members,
+                          const RowEndConfig& c, std::mt19937_64& rng) {
+  if (c.policy == RowEndPolicy::end_slice) return end_slice_centroid(uv, members, c.end_slice);
+  const Eigen::Vector2d nearest = uv[nearest_supported(uv, members, c)];
+  if (c.policy == RowEndPolicy::nearest) return nearest;
+  // Line fitting (003 sec. II-C): the Nearest point projected onto the line fitted to the cluster.
+  const auto line = cluster_line(uv, members, c, rng);
+  if (!line) return nearest;
+  const auto& [point, direction] = *line;
+  return point + direction * direction.dot(nearest - point);
+}
+
+// The nearest pole to the robot on each side (v > 0 left).
 void pick_nearest(const std::vector<Eigen::Vector2d>& uv, const std::vector<int>& candidates,
                   std::optional<int>& left, std::optional<int>& right) {
   for (const int i : candidates) {
@@ -126,6 +186,8 @@ void RowEndConfig::validate() const {
   core::check_positive(ransac_threshold, "ransac_threshold");
   core::check_positive(end_slice, "end_slice");
   core::check_range(max_line_angle_deg, 0.0, 90.0, "max_line_angle_deg");
+  core::check_positive(nearest_radius, "nearest_radius");
+  core::check_non_negative(nearest_min_neighbours, "nearest_min_neighbours");
 }
 
 RowEnds estimate_row_ends(std::span<const Eigen::Vector2f> points_base, double row_heading,
@@ -140,14 +202,17 @@ RowEnds estimate_row_ends(std::span<const Eigen::Vector2f> points_base, double r
   for (const auto& p : points_base)
     if (std::isfinite(p.x()) && std::isfinite(p.y())) uv.push_back(R_row_base * p.cast<double>());
   std::vector<Eigen::Vector2d> poles_uv;
+  std::mt19937_64 rng(config.seed);
   for (const auto& members : euclidean_clusters(uv, config.cluster_tolerance))
     if (static_cast<int>(members.size()) >= config.min_cluster_points)
-      poles_uv.push_back(end_slice_centroid(uv, members, config.end_slice));
+      poles_uv.push_back(end_point(uv, members, config, rng));
   const Eigen::Rotation2Dd R_base_row(row_heading);
   for (const auto& q : poles_uv) out.poles.push_back(R_base_row * q);
   std::vector<int> candidates(poles_uv.size());
   std::iota(candidates.begin(), candidates.end(), 0);
-  if (config.policy == RowEndPolicy::line_fitting)
+  // The block's row ends lie on one line across the rows: its inliers are the candidates for the
+  // followed rows' ends (rownav; the Nearest policy, as published, keeps every cluster).
+  if (config.policy != RowEndPolicy::nearest)
     if (const auto fit = ransac_end_line(poles_uv, config)) {
       candidates = fit->inliers;
       out.end_line = core::Line2(R_base_row * fit->point, R_base_row * fit->direction);

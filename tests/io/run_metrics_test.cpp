@@ -60,14 +60,28 @@ TEST(RunMetrics, ACorridorLeftHalfWayIsNotServed) {
   EXPECT_TRUE(s.success);
 }
 
+/// Three rows 12 m long and 2 m apart; row `i`, its direction and its left normal.
+struct ThreeRows {
+  explicit ThreeRows(std::size_t i)
+      : field(make()),
+        truth(field),
+        row(field.rows[i]),
+        along((row.end() - row.start()).normalized()),
+        across(-along.y(), along.x()) {}
+  static sim::Field make() {
+    sim::FieldConfig f;
+    f.vineyard.rows = 3, f.vineyard.row_length = 12.0, f.vineyard.row_spacing = 2.0;
+    return sim::generate_field(f);
+  }
+  const sim::Field field;
+  const sim::FieldTruth truth;
+  const sim::Row& row;
+  const Eigen::Vector2d along, across;
+};
+
 TEST(RunMetrics, RowEndsPastTheLastPlantAreAPositiveOffsetAlongTheRowAndShortOnesNegative) {
-  sim::FieldConfig f;
-  f.vineyard.rows = 3, f.vineyard.row_length = 12.0, f.vineyard.row_spacing = 2.0;
-  const sim::Field field = sim::generate_field(f);
-  const sim::FieldTruth truth(field);
-  const auto& row = field.rows[1];
-  const Eigen::Vector2d along = (row.end() - row.start()).normalized();
-  const Eigen::Vector2d across(-along.y(), along.x());
+  const ThreeRows f(1);
+  const auto& [field, truth, row, along, across] = f;
   RunResult run;
   // 0.3 m past the far end (and 0.1 m beside it); 0.1 m short of the near end.
   run.row_ends_world = {row.end() + 0.3 * along + 0.1 * across, row.start() + 0.1 * along};
@@ -77,6 +91,30 @@ TEST(RunMetrics, RowEndsPastTheLastPlantAreAPositiveOffsetAlongTheRowAndShortOne
   EXPECT_NEAR(*s.row_end_error_max, std::hypot(0.3, 0.1), 1e-9);
   run.row_ends_world = {row.end() - 0.2 * along};
   EXPECT_NEAR(*summarize(run, truth).row_end_along_mean, -0.2, 1e-9);
+}
+
+TEST(RunMetrics, EachPoleIsScoredAgainstTheFramesNearestEndPointAndFarPointsOnlyCounted) {
+  // Bertoglio 2023 Table II: in each turn frame, each true pole against the nearest end point.
+  // A point farther than half the spacing (2 m) from every row end is a bush: only counted.
+  const ThreeRows f(2);
+  const auto& [field, truth, row, along, across] = f;
+  RunResult run;
+  // Frame 1: the end seen 0.1 m beside it, and a vine 0.8 m into the row (not the nearest);
+  // frame 2: 0.3 m past it, the start 0.05 m short, and a bush 3 m out in the headland.
+  for (const auto& [t, p] :
+       std::vector<std::pair<double, Eigen::Vector2d>>{{1.0, row.end() + 0.1 * across},
+                                                       {1.0, row.end() - 0.8 * along},
+                                                       {2.0, row.end() + 0.3 * along},
+                                                       {2.0, row.start() - 0.05 * along},
+                                                       {2.0, row.end() + 3.0 * along}})
+    run.turn_row_ends_world.push_back({t, p});
+  const RunSummary s = summarize(run, truth);
+  EXPECT_EQ(s.turn_row_end_points, 3);
+  EXPECT_EQ(s.turn_row_end_spurious, 1);
+  EXPECT_NEAR(*s.turn_row_end_error_mean, (0.1 + 0.3 + 0.05) / 3.0, 1e-9);
+  EXPECT_NEAR(*s.turn_row_end_error_max, 0.3, 1e-9);
+  EXPECT_NEAR(*s.turn_row_end_error_min, 0.05, 1e-9);
+  EXPECT_FALSE(summarize(RunResult{}, truth).turn_row_end_error_mean.has_value());
 }
 
 }  // namespace

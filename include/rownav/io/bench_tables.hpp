@@ -60,8 +60,8 @@ std::vector<CellResult> collect_results(const std::vector<BenchCell>& cells,
 /// appearance. Tables without any run are left out.
 std::vector<ResultTable> build_tables(const std::vector<CellResult>& runs);
 
-/// Mean, max, min or median of `key` over the runs that have it; nullopt when none has.
-enum class Aggregate { mean, max, min, median };
+/// Mean, max, min, median or sum of `key` over the runs that have it; nullopt when none has.
+enum class Aggregate { mean, max, min, median, sum };
 std::optional<double> aggregate(const std::vector<const RunSummary*>& runs, const std::string& key,
                                 Aggregate how);
 

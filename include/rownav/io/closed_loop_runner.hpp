@@ -131,6 +131,12 @@ struct RunResult {
   std::vector<FrameSample> frames;
   std::vector<navigate::NavEvent> events;       ///< odom-frame points
   std::vector<Eigen::Vector2d> row_ends_world;  ///< estimated row ends, mapped by the true pose when estimated
+  /// One turn frame's row-end point (NavCommand::row_end_points), mapped by the true pose.
+  struct TurnRowEnd {
+    double stamp = 0.0;  ///< [s] of the command that reported it
+    Eigen::Vector2d world = Eigen::Vector2d::Zero();
+  };
+  std::vector<TurnRowEnd> turn_row_ends_world;  ///< every turn frame's (row_end_points.csv)
   navigate::NavState final_state = navigate::NavState::in_row;
   navigate::StopReason stop_reason = navigate::StopReason::none;
   int turns = 0;

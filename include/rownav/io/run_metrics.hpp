@@ -39,6 +39,12 @@ struct RunSummary {
   /// [m] mean signed offset of the estimated row ends along their rows: + past the true end
   /// (into the headland), - short of it (the true end = the row's last plant or end post)
   std::optional<double> row_end_along_mean;
+  /// [m] 003 Table II: in each turn frame, each true row end (end post, else last plant)
+  /// against the nearest of the frame's row-end points (NavCommand::row_end_points), when one
+  /// lies within half the distance between neighbouring true ends (turn_row_end_points: those
+  /// pole sightings); turn_row_end_spurious: the points farther than that from every true end
+  std::optional<double> turn_row_end_error_mean, turn_row_end_error_max, turn_row_end_error_min;
+  int turn_row_end_points = 0, turn_row_end_spurious = 0;
   std::optional<double> frame_latency_median_ms, frame_latency_p99_ms;
   std::optional<double> track_lateral_error_rmse, track_lateral_error_max;
   std::optional<double> track_heading_error_rmse_deg, track_heading_error_max_deg;

@@ -69,6 +69,8 @@ struct NavCommand {
   int served = 0;
   std::vector<NavEvent> events;      ///< what happened in this call
   std::optional<FrameReport> frame;  ///< the LiDAR frame processed in this call, if any
+  /// a turn's frame: its row-end points (odom frame, NavOutput::row_end_points)
+  std::vector<Eigen::Vector2d> row_end_points;
   /// the map stage's validated place (Emmi 2021 Table 1; unknown when disabled)
   map::Place place = map::Place::unknown;
   std::vector<PlaceKey> key_locations;   ///< key locations validated in this call (odom frame)

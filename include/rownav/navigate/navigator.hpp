@@ -246,6 +246,9 @@ struct NavOutput {
   std::vector<NavEvent> events;  ///< what happened this step
   int corridor = -1;             ///< corridor of the plan being served / entered
   int served = 0;                ///< corridors driven end to end
+  /// In a turn or the headland: this frame's row-end points, one per cluster by the row_ends
+  /// policy (odom frame; 003 sec. II-C, what its Table II scores against the poles)
+  std::vector<Eigen::Vector2d> row_end_points;
 };
 
 /// What a state is planned to take, from its geometry when it starts (exiting: the distance

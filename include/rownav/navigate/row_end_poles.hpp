@@ -19,22 +19,41 @@
 
 namespace rownav::navigate {
 
-/// How row ends are picked among the clusters (003 sec. II-C).
-enum class RowEndPolicy : std::uint8_t { nearest, line_fitting };
+/// Where each cluster's row end (its end point) is taken (003 sec. II-C).
+enum class RowEndPolicy : std::uint8_t {
+  /// 003's Nearest: the cluster's point nearest the robot with nearest_min_neighbours points
+  /// within nearest_radius (the row end's face towards the robot)
+  nearest,
+  /// 003's Line fitting: that point projected onto a RANSAC line fitted to the cluster (onto the
+  /// row's axis for a row end seen from the headland)
+  line_fitting,
+  /// rownav: the centroid of the cluster's end slice (end_slice deep along the rows, at its
+  /// extreme nearest the robot): the middle of the row end across the row
+  end_slice
+};
 
 /// Configuration of the row-end estimator (the implementation owns and may extend the fields).
 struct RowEndConfig {
-  RowEndPolicy policy = RowEndPolicy::line_fitting;  ///< 003 sec. II-C
-  double cluster_tolerance = 0.3;                    ///< [m] Euclidean clustering distance
-  int min_cluster_points = 3;                        ///< [points] smaller clusters are ignored
-  int ransac_iterations = 100;                       ///< [-] 003 sec. II-C
-  double ransac_threshold = 0.1;                     ///< [m] 003 sec. II-C
-  std::uint64_t seed = 1;                            ///< RANSAC seed
+  /// Each cluster's end point (003 sec. II-C; end_slice: rownav, the row ends every earlier
+  /// release used). All but nearest also keep only the clusters on one line across the rows as
+  /// the followed rows' ends (left_end / right_end)
+  RowEndPolicy policy = RowEndPolicy::end_slice;
+  double cluster_tolerance = 0.3;  ///< [m] Euclidean clustering distance
+  int min_cluster_points = 3;      ///< [points] smaller clusters are ignored
+  int ransac_iterations = 100;     ///< [-] 003 sec. II-C
+  double ransac_threshold = 0.1;   ///< [m] 003 sec. II-C
+  std::uint64_t seed = 1;          ///< RANSAC seed
   /// [m] depth of a cluster's end slice (along the rows, at its extreme nearest the robot) whose
   /// centroid is the pole candidate (rownav: a row seen from its end is one long cluster)
   double end_slice = 0.1;
   /// [deg] the end line may deviate this much from perpendicular to the rows
   double max_line_angle_deg = 30.0;
+  /// [m] Nearest policy: the neighbourhood radius around a candidate end point. 003 names the
+  /// parameter without a value: about three returns of a post 2 m away on a 1024-column scan
+  double nearest_radius = 0.1;
+  /// [-] Nearest policy: cluster points a candidate needs within nearest_radius (003: configured;
+  /// 2 rejects a lone return touching the cluster)
+  int nearest_min_neighbours = 2;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -46,6 +65,8 @@ struct RowEndConfig {
     v("seed", s.seed);
     v("end_slice", s.end_slice);
     v("max_line_angle_deg", s.max_line_angle_deg);
+    v("nearest_radius", s.nearest_radius);
+    v("nearest_min_neighbours", s.nearest_min_neighbours);
   }
   void validate() const;
 };
@@ -72,6 +93,6 @@ RowEnds estimate_row_ends(std::span<const Eigen::Vector2f> points_base, double r
 template <>
 struct rownav::core::EnumNames<rownav::navigate::RowEndPolicy> {
   using E = rownav::navigate::RowEndPolicy;
-  static constexpr std::array<std::pair<E, std::string_view>, 2> values{
-      {{E::nearest, "nearest"}, {E::line_fitting, "line_fitting"}}};
+  static constexpr std::array<std::pair<E, std::string_view>, 3> values{
+      {{E::nearest, "nearest"}, {E::line_fitting, "line_fitting"}, {E::end_slice, "end_slice"}}};
 };
