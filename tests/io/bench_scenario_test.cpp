@@ -152,7 +152,7 @@ TEST(BenchScenario, RepositoryScenariosAndFieldsLoad) {
   const auto quick = expand_scenario(load_scenario(src / "bench/scenarios/quick.yaml", false));
   EXPECT_EQ(quick.size(), 4u);  // as stated in quick.yaml
   const auto full = expand_scenario(load_scenario(src / "bench/scenarios/full.yaml", false));
-  EXPECT_EQ(full.size(), 520u);  // as stated in full.yaml
+  EXPECT_EQ(full.size(), 536u);  // as stated in full.yaml
   const auto malavazi =
       expand_scenario(load_scenario(src / "bench/scenarios/malavazi.yaml", false));
   ASSERT_EQ(malavazi.size(), 240u);  // 4 detectors x 2 variants x 3 levels x 10 seeds
