@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <span>
@@ -48,19 +49,40 @@ Sides grow_cone(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c
 }
 
 // Bertoglio 2023: rectangles beside the robot grow outwards until N points are inside; in the
-// frame rotated by `heading` (0 = the robot's axes, as in the paper).
+// frame rotated by `heading` (0 = the robot's axes, as in the paper). A window with no return
+// at all (a robot before the rows) starts at its side's first return ahead, when that is within
+// rect_slide_ahead (rownav, issue 11); on a planar scan only when both windows are empty
+// (`per_side` false). Starting at the rows' first return, not at the first shift that holds any,
+// keeps a near row's start from giving fewer than N returns and the row behind it the N-th.
 Sides grow_rectangles(const std::vector<Eigen::Vector2f>& pts, const ConeRectConfig& c,
-                      double heading, std::vector<float>& buf) {
-  Sides s;
+                      double heading, bool per_side, std::vector<float>& buf) {
   const float ch = static_cast<float>(std::cos(heading)),
               sh = static_cast<float>(std::sin(heading));
+  const auto x_lo = static_cast<float>(c.rect_x_min), x_hi = static_cast<float>(c.rect_x_max);
+  // Per side (0: left, 1: right): the window's start and whether it holds a return.
+  float lo[2] = {x_lo, x_lo},
+        first[2] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+  bool beside[2] = {false, false};
+  for (const auto& p : pts) {
+    if (!p.allFinite()) continue;
+    const float x = ch * p.x() + sh * p.y(), y = -sh * p.x() + ch * p.y();
+    if (y == 0.0f || std::abs(y) > c.max_rect_width) continue;
+    const int k = y > 0.0f ? 0 : 1;
+    beside[k] = beside[k] || (x >= x_lo && x <= x_hi);
+    if (x > x_hi) first[k] = std::min(first[k], x);
+  }
+  const bool none_beside = !beside[0] && !beside[1];
+  for (int k = 0; k < 2; ++k)
+    if (!beside[k] && (per_side || none_beside) && first[k] - x_lo <= c.rect_slide_ahead)
+      lo[k] = first[k];
+  Sides s;
   for (const int sign : {1, -1}) {
+    const float a = lo[sign > 0 ? 0 : 1], b = a + (x_hi - x_lo);
     buf.clear();
     for (const auto& p : pts) {
       if (!p.allFinite()) continue;
       const float x = ch * p.x() + sh * p.y(), y = sign * (-sh * p.x() + ch * p.y());
-      if (x >= c.rect_x_min && x <= c.rect_x_max && y > 0.0f && y <= c.max_rect_width)
-        buf.push_back(y);
+      if (x >= a && x <= b && y > 0.0f && y <= c.max_rect_width) buf.push_back(y);
     }
     (sign > 0 ? s.left : s.right) = nth_smallest(buf, c.rect_points);
   }
@@ -130,6 +152,7 @@ void ConeRectConfig::validate() const {
               "max_cone_half_angle_deg", "must be in (0, 90)");
   core::check(rect_x_min < rect_x_max, "rect_x_max", "must be > rect_x_min");
   core::check(rect_points >= 1, "rect_points", "must be >= 1");
+  core::check_non_negative(rect_slide_ahead, "rect_slide_ahead");
   core::check_positive(max_rect_width, "max_rect_width");
   core::check_non_negative(min_width, "min_width");
   core::check_positive(row_depth, "row_depth");
@@ -146,15 +169,18 @@ core::RowObservation ConeRectDetector::detect(const DetectorInput& input) {
   core::RowObservation obs;
   obs.stamp = input.stamp;
   const Sides cone = grow_cone(input.points, c, buf_);
+  // A planar scanner's gap beside the robot, its near row ahead hidden, would slide a window to
+  // the row behind it (tests/detect/nearest_row_2d_test.cpp: gross 0.47 -> 0.62 %).
+  const bool per_side = !input.planar_scan;
   const bool has_cone = cone.left && cone.right;
   double heading = has_cone ? 0.5 * (*cone.left + *cone.right) : 0.0;
   const auto sharp =
       input.planar_scan ? row_direction(input.points, c.row_direction) : std::nullopt;
   if (sharp) heading = *sharp;
-  Sides d = grow_rectangles(input.points, c, c.align_rectangles ? heading : 0.0, buf_);
+  Sides d = grow_rectangles(input.points, c, c.align_rectangles ? heading : 0.0, per_side, buf_);
   if (!sharp && has_cone && c.compensate_offset && d.left && d.right) {  // corrected heading
     heading = corrected_heading(0.5 * (*cone.left + *cone.right), d, c);
-    if (c.align_rectangles) d = grow_rectangles(input.points, c, heading, buf_);
+    if (c.align_rectangles) d = grow_rectangles(input.points, c, heading, per_side, buf_);
   }
   if (c.nearest_row.enabled && (input.planar_scan || c.nearest_row.on_clouds))
     step_in(input.points, c, heading, d);

@@ -28,7 +28,14 @@ struct ConeRectConfig {
   double max_cone_half_angle_deg = 75.0;  ///< [deg] a side that reaches this finds no row
   double rect_x_min = -0.5;               ///< [m] rectangles' extent along x (robot frame)
   double rect_x_max = 1.5;                ///< [m]
-  int rect_points = 3;          ///< [-] points inside a rectangle that stop it from growing (N)
+  int rect_points = 3;  ///< [-] points inside a rectangle that stop it from growing (N)
+  /// [m] a rectangle with no return at all in its window (a robot started in the headland has
+  /// no row beside it: the closed-loop runner's lead-in is 1.5 m, and Bertoglio 2023's robot
+  /// started inside the row) starts its window at its side's first return ahead, when that lies
+  /// at most this far beyond rect_x_min (rownav, issue 11); twice that lead-in. On a planar scan
+  /// only when both windows are empty: there a gap beside the robot with its near row hidden
+  /// ahead would reach the row behind. 0: the paper's fixed window
+  double rect_slide_ahead = 3.0;
   double max_rect_width = 2.5;  ///< [m] a rectangle that reaches this finds no row
   /// [m] both sides found closer together than this is clutter (weeds, open field), no row
   double min_width = 0.3;
@@ -66,6 +73,7 @@ struct ConeRectConfig {
     v("rect_x_min", s.rect_x_min);
     v("rect_x_max", s.rect_x_max);
     v("rect_points", s.rect_points);
+    v("rect_slide_ahead", s.rect_slide_ahead);
     v("max_rect_width", s.max_rect_width);
     v("min_width", s.min_width);
     v("row_depth", s.row_depth);
