@@ -68,6 +68,10 @@ PcdHeader read_pcd_header(std::istream& in, const std::string& name, core::Point
   PcdHeader h;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
+    // PCL 1.13 skips only truly empty lines: one of blanks ("\t", "   ", a CRLF file's "\r")
+    // reaches its keyword switch with no keyword and PCDReader::read crashes (pcd_fuzz).
+    if (!line.empty() && line.find_first_not_of(" \t\r") == std::string::npos)
+      bad_pcd(name, n, "a header line of blanks only");
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.rfind("# rownav ", 0) == 0) has_meta = parse_rownav_comment(line, meta);
     if (line.empty() || line[0] == '#') continue;

@@ -203,6 +203,15 @@ TEST_F(CloudIoTest, HeadersPclWouldCrashOnAreRefusedWithTheirLine) {
   const std::string vt = error_of(write("vt.pcd", "VERSION 0.7\n\x0b\n" + body));
   EXPECT_NE(vt.find("vt.pcd:line 2: not a valid PCD file (control character"), std::string::npos)
       << vt;
+  // A header line of blanks only (a tab, spaces, a CRLF blank line; pcd_fuzz): PCL 1.13
+  // segfaults when it precedes the header (fuzz/corpus/pcd/blank_header_line_crash.pcd).
+  for (const std::string blank : {"\t\n", "   \n", "\r\n"}) {
+    const std::string e = error_of(write("blank.pcd", blank + "VERSION 0.7\n" + body));
+    EXPECT_NE(e.find("blank.pcd:line 1: not a valid PCD file (a header line of blanks only)"),
+              std::string::npos)
+        << e;
+  }
+  EXPECT_EQ(read_cloud(write("empty_line.pcd", "\nVERSION 0.7\n" + body)).size(), 1u);
   // More points than the data can hold: PCL would allocate them all.
   const std::string many =
       error_of(write("many.pcd",
