@@ -139,7 +139,11 @@ bool ModelMatchingTracker::associate(const core::RowLine& r, double s, double st
     m.buffer.push_back(c);
     while (static_cast<int>(m.buffer.size()) > config_.buffer_size) m.buffer.pop_front();
     m.last_seen = stamp, ++m.support, touched[best] = true;
-    m.x_min = std::min(m.x_min, xa), m.x_max = std::max(m.x_max, xb);
+    // The extent is the latest matched row's, as the other trackers keep it: a running union
+    // only grows, and one detection reaching into the headland (a weed, a post on the row's line)
+    // put the row end 2.5-4 m past the true one for the rest of the corridor (issue 11: Nehme's
+    // pipeline on the narrow vineyard exited late and entered the wrong corridors).
+    m.x_min = xa, m.x_max = xb;
     return true;
   }
   if ((!aligned || d_best > config_.reject_zone * s) &&

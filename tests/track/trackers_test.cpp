@@ -156,6 +156,30 @@ TEST(Trackers, StaleFramesAndNonFiniteInputAreIgnored) {
   }
 }
 
+// The row end is read from the followed rows' extent (navigate/row_end_estimator.cpp): one
+// frame whose rows reach 3 m further (a weed or post in the headland on the row's line) must not
+// hold it there. model_matching kept the union of every extent: Nehme's pipeline put the row
+// ends 2.5-4 m past the true ones on the narrow vineyard (BENCHMARK.md, issue 11).
+TEST(Trackers, ARowsExtentIsItsLatestObservationsNotTheUnionOfAll) {
+  for (const auto& tr : trackers()) {
+    SCOPED_TRACE(tr.name);
+    auto tracker = tr.make();
+    std::mt19937_64 rng(8);
+    test::CorridorScene scene;
+    RowTracking out;
+    for (int k = 0; k < 8; ++k) {
+      scene.x_max = k == 3 ? 9.0 : 6.0;  // the robot stands still: x_max is the row end
+      const double t = 0.1 * k;
+      out = tracker->update(test::observe(scene, pose_at(0.0, 0.0, 0.0), t, rng),
+                            pose_at(0.0, 0.0, 0.0));
+    }
+    ASSERT_GE(out.left, 0);
+    ASSERT_GE(out.right, 0);
+    EXPECT_NEAR(out.rows[std::size_t(out.left)].x_max, 6.0, 1e-6);
+    EXPECT_NEAR(out.rows[std::size_t(out.right)].x_max, 6.0, 1e-6);
+  }
+}
+
 TEST(Trackers, TargetRowErrorIsTheOffsetFromTheChosenRow) {
   ModelMatchingConfig c;
   c.common.target_row = TargetRow::left;
