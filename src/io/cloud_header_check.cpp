@@ -110,11 +110,15 @@ void check_data_start(const std::filesystem::path& file, const PcdHeader& h,
   std::ifstream in(file, std::ios::binary);
   in.seekg(static_cast<std::streamoff>(h.data_offset));
   std::string line;
+  // PCL takes a line's first word with `stream >> word`, which skips every isspace() byte: a
+  // data line "\v# ..." is a comment to it, and the header keyword on the next line is read
+  // (pcd_fuzz: FIELDS after DATA, then a 4 EB allocation).
+  static constexpr const char* kBlanks = " \t\r\v\f";
   for (int n = h.lines.at("DATA") + 1; std::getline(in, line); ++n) {
-    const auto first = line.find_first_not_of(" \t\r");
+    const auto first = line.find_first_not_of(kBlanks);
     if (first == std::string::npos || line[first] == '#') continue;
     const std::string_view word =
-        std::string_view(line).substr(first, line.find_first_of(" \t\r", first) - first);
+        std::string_view(line).substr(first, line.find_first_of(kBlanks, first) - first);
     for (const auto& k : kPclPrefixes)
       if (word.substr(0, k.size()) == k)
         bad_pcd(name, n,

@@ -242,7 +242,9 @@ TEST_F(CloudIoTest, HeadersPclWouldCrashOnAreRefusedWithTheirLine) {
 // ("COLUMNS" = FIELDS), a heap use-after-free on binary data that starts so.
 TEST_F(CloudIoTest, DataThatPclWouldReadAsHeaderIsRefused) {
   const std::string head = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nPOINTS 2\nDATA binary\n";
-  for (const std::string start : {"COLUMNS a b\n", "\n# c\nFIELDSx\n", "SIZE 8\n"}) {
+  // "\v# c": a comment to PCL, which skips every isspace() byte before a line's first word.
+  for (const std::string start :
+       {"COLUMNS a b\n", "\n# c\nFIELDSx\n", "SIZE 8\n", "\v# c\nFIELDS x\n", "\f SIZE 4\n"}) {
     const std::string e = error_of(write("d.pcd", head + start + std::string(24, '\0')));
     EXPECT_NE(e.find("d.pcd:line "), std::string::npos) << e;
     EXPECT_NE(e.find(", which PCL would read as header)"), std::string::npos) << e;
