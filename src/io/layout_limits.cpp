@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/core/statistics.hpp"
 #include "rownav/io/input_error.hpp"
 
 namespace rownav::io::detail {
@@ -33,12 +34,6 @@ std::size_t too_deep_at(std::string_view text, int max_depth) {
     }
   }
   return text.size();
-}
-
-double median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 }  // namespace
@@ -76,7 +71,7 @@ void check_layout_extent(const std::vector<LocatedPoint>& points, const sim::Lay
   if (size.maxCoeff() <= limits.max_extent) return;
   std::vector<double> xs, ys;
   for (const auto& q : points) xs.push_back(q.p.x()), ys.push_back(q.p.y());
-  const Eigen::Vector2d mid(median(xs), median(ys));
+  const Eigen::Vector2d mid(core::median(xs), core::median(ys));
   const LocatedPoint* far = &points.front();
   for (const auto& q : points)
     if ((q.p - mid).cwiseAbs().maxCoeff() > (far->p - mid).cwiseAbs().maxCoeff()) far = &q;

@@ -4,17 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rownav/core/statistics.hpp"
+
 namespace rownav::navigate {
-
-namespace {
-
-double median(std::deque<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
-}  // namespace
 
 GroundCoverEstimator::GroundCoverEstimator(const GroundCoverConfig& config) : config_(config) {
   config_.validate();
@@ -44,7 +36,7 @@ void GroundCoverEstimator::update(const core::PointCloud& cloud_base,
   }
   history_.push_back(top);
   while (static_cast<int>(history_.size()) > config_.frames) history_.pop_front();
-  cover_ = median(history_);
+  cover_ = core::median(history_);
 }
 
 double GroundCoverEstimator::obstacle_min_height(double min_height) const {
