@@ -34,15 +34,16 @@ core::RowObservation DetectionPipeline::process(const core::PointCloud& cloud_li
     return transform_and_detect(cloud_lidar, T_base_lidar_);
   // R rotates the measured up onto +z about the base origin (no yaw change).
   Eigen::Isometry3d level = Eigen::Isometry3d::Identity();
-  level.linear() =
-      Eigen::Quaterniond::FromTwoVectors(up_base / norm, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  level.linear() = Eigen::Quaterniond::FromTwoVectors(up_base / norm, Eigen::Vector3d::UnitZ())
+                       .toRotationMatrix();
   return transform_and_detect(cloud_lidar, level * T_base_lidar_);
 }
 
-core::RowObservation DetectionPipeline::transform_and_detect(const core::PointCloud& cloud_lidar,
-                                                             const Eigen::Isometry3d& T_base_lidar) {
+core::RowObservation DetectionPipeline::transform_and_detect(
+    const core::PointCloud& cloud_lidar, const Eigen::Isometry3d& T_base_lidar) {
   cloud_base_.stamp = cloud_lidar.stamp;
   cloud_base_.frame_id = "base";
+  sensor_base_ = T_base_lidar.translation();
   cloud_base_.has_intensity = cloud_lidar.has_intensity;
   cloud_base_.has_ring = cloud_lidar.has_ring;
   cloud_base_.has_time = cloud_lidar.has_time;
@@ -62,6 +63,7 @@ core::RowObservation DetectionPipeline::transform_and_detect(const core::PointCl
 
 core::RowObservation DetectionPipeline::process(const core::Scan2D& scan_lidar) {
   const Eigen::Isometry2f T = planar_mount(T_base_lidar_).cast<float>();
+  sensor_base_ = T_base_lidar_.translation();
   cloud_base_.points.clear();
   cloud_base_.stamp = scan_lidar.stamp;
   points_base_.clear();
@@ -89,7 +91,8 @@ core::RowObservation DetectionPipeline::detect(double stamp, bool planar) {
     DetectorInput input = preprocessor_.input(stamp);
     input.planar_scan = planar && input.cloud == nullptr;
     last_points_ = input.points;
-    if (filter_ && input.cloud == nullptr) input.points = core::filter_points(input.points, *filter_);
+    if (filter_ && input.cloud == nullptr)
+      input.points = core::filter_points(input.points, *filter_);
     core::RowObservation obs = detector_->detect(input);
     // Centre lines under the crowns, canopy half widths (issue 10); 2D input: no heights.
     if (input.cloud != nullptr) profile_.apply(*input.cloud, obs);

@@ -12,8 +12,9 @@ namespace {
 
 struct BoxCount {
   int left = 0, right = 0;
-  double x_last = -1.0;  // [m] farthest counted point with x <= box_x_max (-1: none)
-  int near = 0;          // planar: returns beside the robot, x in [0, box_x_min)
+  double x_last = -1.0;   // [m] farthest counted point with x <= box_x_max (-1: none)
+  int near = 0;           // planar: returns beside the robot, x in [0, box_x_min)
+  double descent2 = 0.0;  // 3D: squared slope of the steepest ray down ahead of the sensor
 };
 
 // Half width of the box: the two followed rows when the spacing is known (003 sec. II-C), the
@@ -26,10 +27,18 @@ double half_width(const EndOfRowConfig& c, const track::RowTracking& t) {
 
 // 3D cloud: points of the height band (001 sec. 4: 0.5-1.3 m) in x in [box_x_min, box_x_max],
 // per side. x_last is taken over [0, box_x_max]: the last plant seen before the box.
-BoxCount count_cloud(const core::PointCloud& cloud, const EndOfRowConfig& c, double hw) {
+// descent2: any return gives the slope of the ray it ended (from the sensor's origin), whatever
+// it hit; the steepest one ahead inside the box's half width is the lowest ring's there.
+BoxCount count_cloud(const core::PointCloud& cloud, const EndOfRowConfig& c, double hw,
+                     const Eigen::Vector3f& sensor) {
   BoxCount n;
   for (const auto& p : cloud.points) {
-    if (!p.finite() || p.z < c.band_z_min || p.z > c.band_z_max || std::abs(p.y) > hw) continue;
+    if (!p.finite() || std::abs(p.y) > hw) continue;
+    if (p.x > sensor.x() && p.z < sensor.z()) {
+      const float dz = sensor.z() - p.z, dx = p.x - sensor.x(), dy = p.y - sensor.y();
+      n.descent2 = std::max(n.descent2, double(dz * dz / (dx * dx + dy * dy)));
+    }
+    if (p.z < c.band_z_min || p.z > c.band_z_max) continue;
     if (p.x >= 0.0 && p.x <= c.box_x_max) n.x_last = std::max(n.x_last, double(p.x));
     if (p.x < c.box_x_min || p.x > c.box_x_max) continue;
     (p.y > 0.0f ? n.left : n.right) += 1;
@@ -166,6 +175,14 @@ double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig
   return bins.share();
 }
 
+// 3D: whether the steepest ray ahead comes down to the band's floor by the box's far edge
+// (check_view). A sensor below the band, or beyond the box, is not judged by it.
+bool band_in_view(const EndOfRowConfig& c, const BoxCount& n, const Eigen::Vector3f& sensor) {
+  const double run = c.box_x_max - double(sensor.x());
+  if (!c.check_view || double(sensor.z()) <= c.band_z_min || run <= 0.0) return true;
+  return double(sensor.z()) - std::sqrt(n.descent2) * run <= c.band_z_min;
+}
+
 // The followed rows' extent: the nearest and the farthest x_max of the followed rows, when
 // tracked.
 struct Extent {
@@ -231,13 +248,15 @@ bool EndOfRowDetector::blind(int near) {
 EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
                                         std::span<const Eigen::Vector2f> points_base,
                                         const track::RowTracking& tracking,
-                                        const Eigen::Vector2f& sensor_base) {
+                                        const Eigen::Vector3f& sensor_base) {
   const EndOfRowConfig& c = config_;
   const double hw = half_width(c, tracking);
   const bool planar = cloud_base.empty();
-  const BoxCount n = planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw);
+  const BoxCount n =
+      planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw, sensor_base);
   EndOfRowResult r;
-  if (planar && blind(n.near)) {  // no evidence either way (the count keeps its state)
+  // No evidence either way (the count keeps its state).
+  if (planar ? blind(n.near) : !band_in_view(c, n, sensor_base)) {
     r.blind = true;
     r.box_seen = false;
     r.end_detected = declared_;
@@ -259,7 +278,7 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
   // A planar scan's view of the box hidden by something nearer: neither cue is evidence (the
   // rows' tracked extent ends where the occluder hides them, too).
   const bool seen = !planar || shadowed_share(points_base, c, lane_at_box(tracking, c, hw),
-                                              sensor_base) <= c.max_shadowed;
+                                              sensor_base.head<2>()) <= c.max_shadowed;
   const bool count_end = !rows_continue && seen &&
                          (planar ? r.box_points < c.scan_point_threshold
                                  : n.left < c.point_threshold && n.right < c.point_threshold);

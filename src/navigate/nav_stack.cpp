@@ -221,7 +221,7 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
   if (config_.stack.mode == StackMode::track) return r;
   const auto& p = *parts_.pipeline;
   r.end_of_row = end_of_row_->update(p.last_cloud_base(), p.last_points(), *r.tracking,
-                                     p.T_base_lidar().translation().head<2>().cast<float>());
+                                     p.last_sensor_base().cast<float>());
   return r;
 }
 

@@ -81,8 +81,14 @@ std::string Navigator::fmt(double v) {  // event texts: centimetres are enough
   return s.str();
 }
 void Navigator::in_row(const NavInput& in, NavOutput& out) {
-  const bool seen = in.observation.status != core::DetectionStatus::no_rows &&
-                    in.tracking.status != track::TrackStatus::lost;
+  // A sweep whose rays passed over the rows' band (end_of_row.blind: a small robot pitched up on
+  // a bump) is no sign that the rows are gone: while the tracker carries them by odometry
+  // (coasting, bounded by its max_coast_time) the perception timer does not run (issue 10: zoo
+  // leek fields stopped perception_lost after 0.6 s of such sweeps).
+  const bool blind_coasting =
+      in.sweep_3d && in.end_of_row.blind && in.tracking.status == track::TrackStatus::coasting;
+  const bool seen = blind_coasting || (in.observation.status != core::DetectionStatus::no_rows &&
+                                       in.tracking.status != track::TrackStatus::lost);
   if (seen) last_seen_ = in.stamp;
   if (in.stamp - last_seen_ > config_.perception_timeout) {
     // Rows lost just before the end they were seen to have (standing still in odom) while the

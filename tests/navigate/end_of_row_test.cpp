@@ -177,7 +177,8 @@ TEST(EndOfRow, BadConfigNamesTheField) {
 // One OS1-16 sweep in corridor 2 of a generated vineyard, `distance` [m] before the row end, in
 // the base frame.
 core::PointCloud sim_frame(const sim::Field& field, const sim::RayCaster& caster, double distance) {
-  const auto centre = sim::FieldTruth(field).corridor_centre(0, 2);  // a copy: the truth is a temporary
+  const auto centre =
+      sim::FieldTruth(field).corridor_centre(0, 2);  // a copy: the truth is a temporary
   const Eigen::Vector2d end = centre.back();
   const Eigen::Vector2d tangent = (centre.back() - centre[centre.size() - 2]).normalized();
   const Eigen::Vector2d xy = end - distance * tangent;
@@ -278,7 +279,8 @@ TEST(EndOfRow, APlanarBoxIsShadowedAsSeenFromTheScannerNotFromTheBase) {
   EndOfRowResult rb, rs;
   for (int k = 0; k < 2 * c.confirm_frames; ++k) {
     rb = from_base.update(core::PointCloud{}, pts, no_tracking());
-    rs = from_scanner.update(core::PointCloud{}, pts, no_tracking(), Eigen::Vector2f(0.35f, 0.0f));
+    rs = from_scanner.update(core::PointCloud{}, pts, no_tracking(),
+                             Eigen::Vector3f(0.35f, 0.0f, 0.0f));
   }
   EXPECT_TRUE(rb.end_detected);  // the old reading: the box empty, so the row ended
   EXPECT_FALSE(rs.frame_positive);
@@ -293,7 +295,8 @@ TEST(EndOfRow, ABlindPlanarFrameNeitherConfirmsNorClearsTheEnd) {
   EndOfRowDetector d(c);
   const auto in_row = planar_rows(5.0), at_end = planar_rows(0.8);
   const std::vector<Eigen::Vector2f> blind{{0.35f, 0.0f}};
-  for (int k = 0; k < 10; ++k) EXPECT_FALSE(d.update(core::PointCloud{}, in_row, no_tracking()).frame_positive);
+  for (int k = 0; k < 10; ++k)
+    EXPECT_FALSE(d.update(core::PointCloud{}, in_row, no_tracking()).frame_positive);
   for (int k = 0; k < 2 * c.confirm_frames; ++k) {
     const auto r = d.update(core::PointCloud{}, blind, no_tracking());
     EXPECT_TRUE(r.blind);
@@ -304,13 +307,74 @@ TEST(EndOfRow, ABlindPlanarFrameNeitherConfirmsNorClearsTheEnd) {
   EXPECT_FALSE(d.update(core::PointCloud{}, at_end, no_tracking()).blind);
   d.update(core::PointCloud{}, blind, no_tracking());
   EndOfRowResult r;
-  for (int k = 1; k < c.confirm_frames; ++k) r = d.update(core::PointCloud{}, at_end, no_tracking());
+  for (int k = 1; k < c.confirm_frames; ++k)
+    r = d.update(core::PointCloud{}, at_end, no_tracking());
   EXPECT_TRUE(r.end_detected);
   // With the test off the same blind frames are an empty box.
   c.blind_near_ratio = 0.0;
   EndOfRowDetector off(c);
   for (int k = 0; k < 10; ++k) off.update(core::PointCloud{}, in_row, no_tracking());
-  for (int k = 0; k < c.confirm_frames; ++k) r = off.update(core::PointCloud{}, blind, no_tracking());
+  for (int k = 0; k < c.confirm_frames; ++k)
+    r = off.update(core::PointCloud{}, blind, no_tracking());
+  EXPECT_TRUE(r.end_detected);
+}
+
+// A 16-ring sweep (+-16.6 deg, 2.2 deg apart, azimuth +-40 deg every 0.5 deg) from a sensor
+// 0.75 m above flat, bare ground at base x = 0.3 m (the rows have ended), levelled, with the
+// robot pitched up by `pitch_deg`: only the ground hits of the downward rings.
+core::PointCloud bare_ground_sweep(double pitch_deg) {
+  constexpr double kDeg = 3.14159265358979 / 180.0;
+  core::PointCloud c;
+  for (int ring = 0; ring < 16; ++ring) {
+    const double down = (16.6 - 2.2 * ring - pitch_deg) * kDeg;  // ray slope below horizontal
+    if (down <= 0.0) continue;
+    const double d = 0.75 / std::tan(down);
+    for (double a = -40.0; a <= 40.0; a += 0.5)
+      c.points.push_back(
+          {float(0.3 + d * std::cos(a * kDeg)), float(d * std::sin(a * kDeg)), 0.0f});
+  }
+  return c;
+}
+
+TEST(EndOfRow, ASweepWhoseRaysPassOverTheBandNeitherConfirmsNorClearsTheEnd) {
+  // Row-crop box (config/navigate/row_crop.yaml): band 0.3-0.9 m, 1-2 m ahead. Level, the lowest
+  // ring comes down to 0.3 m at x = 1.81 m: the box is seen, and empty. Pitched up 5 deg it is
+  // still 0.40 m high at the box's far edge: a 0.3-0.45 m crop there would not be seen.
+  EndOfRowConfig c;
+  c.band_z_min = 0.3, c.band_z_max = 0.9, c.box_x_min = 1.0, c.box_x_max = 2.0;
+  const Eigen::Vector3f sensor(0.3f, 0.0f, 0.75f);
+  const core::PointCloud level = bare_ground_sweep(0.0), pitched = bare_ground_sweep(5.0);
+  EndOfRowDetector d(c);
+  for (int k = 0; k < 10; ++k) {
+    const auto r = d.update(pitched, {}, no_tracking(), sensor);
+    EXPECT_TRUE(r.blind);
+    EXPECT_FALSE(r.box_seen);
+    EXPECT_FALSE(r.end_detected);
+  }
+  // Level, pitched, level, level: the pitched sweep does not clear the count.
+  EXPECT_FALSE(d.update(level, {}, no_tracking(), sensor).end_detected);
+  EXPECT_TRUE(d.update(pitched, {}, no_tracking(), sensor).blind);
+  EXPECT_FALSE(d.update(level, {}, no_tracking(), sensor).end_detected);
+  const auto r = d.update(level, {}, no_tracking(), sensor);
+  EXPECT_FALSE(r.blind);
+  EXPECT_TRUE(r.end_detected);
+  // Without the check the pitched sweeps are an empty box (the behaviour before issue 10's fix).
+  c.check_view = false;
+  EndOfRowDetector unchecked(c);
+  EndOfRowResult u;
+  for (int k = 0; k < c.confirm_frames; ++k)
+    u = unchecked.update(pitched, {}, no_tracking(), sensor);
+  EXPECT_TRUE(u.end_detected);
+}
+
+TEST(EndOfRow, ASensorBelowTheBandIsNotJudgedByTheView) {
+  EndOfRowConfig c;
+  c.band_z_min = 0.3, c.band_z_max = 0.9, c.box_x_min = 1.0, c.box_x_max = 2.0;
+  EndOfRowDetector d(c);
+  EndOfRowResult r;
+  for (int k = 0; k < c.confirm_frames; ++k)
+    r = d.update(bare_ground_sweep(5.0), {}, no_tracking(), Eigen::Vector3f(0.3f, 0.0f, 0.2f));
+  EXPECT_FALSE(r.blind);
   EXPECT_TRUE(r.end_detected);
 }
 

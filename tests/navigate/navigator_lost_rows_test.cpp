@@ -57,6 +57,38 @@ TEST(NavigatorLostRows, RowsLostFarBeforeTheirEndAreALossOfPerception) {
   EXPECT_EQ(lose_rows({}, true, 0.5 / kSpeed).stop_reason, StopReason::perception_lost);
 }
 
+// Rows seen for 1 s, then `blind_for` seconds of 3D sweeps without rows, with the end-of-row
+// detector saying (`blind`) that the rays passed over the rows' band; the rows go on for 30 m.
+NavOutput blind_sweeps(bool blind, track::TrackStatus status, double blind_for = 0.9) {
+  Navigator nav{NavigatorConfig{}, {0, 1}, TurnSide::left};
+  NavOutput out;
+  for (double t = 0.0; t <= 1.0 + blind_for && out.state == NavState::in_row; t += 0.1) {
+    const bool rows = t < 1.0;
+    NavInput in = testing::corridor_frame(t, kSpeed * t, 0.0, 30.0, rows);
+    in.sweep_3d = true;
+    if (!rows) in.end_of_row.blind = blind, in.end_of_row.box_seen = !blind;
+    if (!rows) in.tracking.status = status;
+    out = nav.step(in);
+  }
+  return out;
+}
+
+TEST(NavigatorLostRows, SweepsOverTheRowsWhileTheTrackerCoastsAreNoLossOfPerception) {
+  // A small robot pitched up on a bump: 0.9 s (> perception_timeout 0.5 s) of blind sweeps.
+  const NavOutput out = blind_sweeps(true, track::TrackStatus::coasting);
+  EXPECT_EQ(out.state, NavState::in_row);
+  EXPECT_TRUE(out.control.has_value());
+}
+
+TEST(NavigatorLostRows, SweepsThatSawTheBandEmptyAreALossOfPerception) {
+  EXPECT_EQ(blind_sweeps(false, track::TrackStatus::coasting).stop_reason,
+            StopReason::perception_lost);
+}
+
+TEST(NavigatorLostRows, BlindSweepsAfterTheTrackerGaveUpAreALossOfPerception) {
+  EXPECT_EQ(blind_sweeps(true, track::TrackStatus::lost).stop_reason, StopReason::perception_lost);
+}
+
 TEST(NavigatorLostRows, ReachIsValidated) {
   NavigatorConfig c;
   c.lost_rows_end_reach = -1.0;

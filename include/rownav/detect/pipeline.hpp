@@ -1,9 +1,9 @@
 #pragma once
 /// @file pipeline.hpp One LiDAR frame to a RowObservation: LiDAR frame -> base frame (the mount),
 /// the preprocessing chain, then a row detector.
-#include <optional>
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -74,6 +74,9 @@ class DetectionPipeline {
   /// The last 3D frame in the base frame before preprocessing (raw heights, NaN possible); empty
   /// after a planar scan. End-of-row tests count points in height bands of it.
   const core::PointCloud& last_cloud_base() const { return cloud_base_; }
+  /// The sensor's origin in the base frame of the last frame: the mount's translation, turned
+  /// by the gravity levelling when the frame was levelled (the point its rays start from).
+  const Eigen::Vector3d& last_sensor_base() const { return sensor_base_; }
   /// The ground estimated on last_cloud_base() (heights above the local ground).
   const preprocess::GroundEstimator& last_ground() const { return preprocessor_.ground(); }
 
@@ -87,6 +90,7 @@ class DetectionPipeline {
   RowProfile profile_;  // every row's centre and half width (issue 10)
   Eigen::Isometry3d T_base_lidar_;
   core::PointCloud cloud_base_;
+  Eigen::Vector3d sensor_base_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector2f> points_base_, last_points_;
   std::optional<core::DataFilterBoxes> filter_;
 };

@@ -68,7 +68,15 @@ struct EndOfRowConfig {
   /// blind scanner sees nothing ahead either (issue 11: "many" weeds in a 2D vineyard ended
   /// every first row after 5 m) (rownav)
   double blind_near_ratio = 0.25;
-  int blind_history = 25;        ///< [frames] of that median (1 s of a 25 Hz scanner) (rownav)
+  int blind_history = 25;  ///< [frames] of that median (1 s of a 25 Hz scanner) (rownav)
+  /// 3D clouds: the box is in view only when the steepest ray ahead of the sensor (inside the
+  /// box's half width, after the gravity levelling) comes down to band_z_min by box_x_max. A
+  /// frame whose rays all pass over the band there (a small robot pitched up on a bump, a mast
+  /// high above a low crop) holds no evidence either way: it neither confirms nor clears the end
+  /// (issue 10: zoo leek and cabbage fields pitched +-15 deg on 5 cm rough ground, and three
+  /// such frames in a row ended the row at its first plant). Only for a sensor above band_z_min
+  /// (rownav)
+  bool check_view = true;
   bool use_extent = true;        ///< also end when every followed row's x_max < extent_distance
   double extent_distance = 3.0;  ///< [m] all followed rows ending closer than this: row end ahead
 
@@ -91,6 +99,7 @@ struct EndOfRowConfig {
     v("shadow_wall", s.shadow_wall);
     v("blind_near_ratio", s.blind_near_ratio);
     v("blind_history", s.blind_history);
+    v("check_view", s.check_view);
     v("use_extent", s.use_extent);
     v("extent_distance", s.extent_distance);
   }
@@ -110,11 +119,12 @@ struct EndOfRowResult {
   bool frame_positive = false;  ///< this frame alone says "row end" (before confirmation)
   /// 001 eq. (24) H1 this frame: |N_k - N_k-1| > count_jump (the end approaches)
   bool count_jump = false;
-  /// planar scan: the sensor saw too little beside the robot to judge (blind_near_ratio); the
-  /// frame neither confirmed nor cleared the end
+  /// the sensor could not judge this frame (planar scan: too little seen beside the robot,
+  /// blind_near_ratio; 3D cloud: its rays passed over the box's band, check_view); the frame
+  /// neither confirmed nor cleared the end
   bool blind = false;
-  /// the box was in view this frame (planar scans: not shadowed by nearer returns in the lane,
-  /// not blind; 3D clouds: always)
+  /// the box was in view this frame (planar scans: not shadowed by nearer returns in the lane;
+  /// neither: not blind)
   bool box_seen = true;
 };
 
@@ -125,13 +135,13 @@ class EndOfRowDetector {
   /// One frame: the 3D cloud in the base frame (raw heights; may be empty for a planar scan, in
   /// which case `points_base` 2D points are counted instead), and the tracker's output. Once
   /// declared, the end stays declared until reset() (the navigator resets on the next corridor).
-  /// `sensor_base`: a planar scanner's position in the base frame, from where the shadows of
-  /// the shadow test are cast (a weed touching a scanner at the robot's front hides the whole
-  /// box; seen from the base origin it covers a few degrees).
+  /// `sensor_base`: the sensor's origin in the (levelled) base frame. A planar scanner's shadows
+  /// are cast from it (a weed touching a scanner at the robot's front hides the whole box; seen
+  /// from the base origin it covers a few degrees); a 3D sensor's rays start there (check_view).
   EndOfRowResult update(const core::PointCloud& cloud_base,
                         std::span<const Eigen::Vector2f> points_base,
                         const track::RowTracking& tracking,
-                        const Eigen::Vector2f& sensor_base = Eigen::Vector2f::Zero());
+                        const Eigen::Vector3f& sensor_base = Eigen::Vector3f::Zero());
   void reset();
   const EndOfRowConfig& config() const { return config_; }
 
