@@ -12,9 +12,9 @@ namespace {
 
 struct BoxCount {
   int left = 0, right = 0;
-  double x_last = -1.0;   // [m] farthest counted point with x <= box_x_max (-1: none)
-  int near = 0;           // planar: returns beside the robot, x in [0, box_x_min)
-  double descent2 = 0.0;  // 3D: squared slope of the steepest ray down ahead of the sensor
+  double x_last = -1.0;  // [m] farthest counted point with x <= box_x_max (-1: none)
+  int near = 0;          // planar: returns beside the robot, x in [0, box_x_min)
+  bool in_view = true;   // 3D: some ray ahead comes down to the band's floor in the box
 };
 
 // Half width of the box: the two followed rows when the spacing is known (003 sec. II-C), the
@@ -25,18 +25,28 @@ double half_width(const EndOfRowConfig& c, const track::RowTracking& t) {
   return c.default_half_width;
 }
 
+// 3D (check_view): the squared slope a ray needs to come down from the sensor to band_z_min by
+// box_x_max; 0 when the check does not apply (a sensor below the band, or beyond the box).
+double needed_descent2(const EndOfRowConfig& c, const Eigen::Vector3f& sensor) {
+  const double run = c.box_x_max - double(sensor.x()), drop = double(sensor.z()) - c.band_z_min;
+  if (!c.check_view || drop <= 0.0 || run <= 0.0) return 0.0;
+  return (drop / run) * (drop / run);
+}
+
 // 3D cloud: points of the height band (001 sec. 4: 0.5-1.3 m) in x in [box_x_min, box_x_max],
 // per side. x_last is taken over [0, box_x_max]: the last plant seen before the box.
-// descent2: any return gives the slope of the ray it ended (from the sensor's origin), whatever
-// it hit; the steepest one ahead inside the box's half width is the lowest ring's there.
+// in_view: any return gives the slope of the ray it ended (from the sensor's origin), whatever it
+// hit; the box's band is in view when one ray ahead inside the box's half width is that steep.
 BoxCount count_cloud(const core::PointCloud& cloud, const EndOfRowConfig& c, double hw,
                      const Eigen::Vector3f& sensor) {
   BoxCount n;
+  const double need2 = needed_descent2(c, sensor);
+  n.in_view = need2 <= 0.0;
   for (const auto& p : cloud.points) {
     if (!p.finite() || std::abs(p.y) > hw) continue;
-    if (p.x > sensor.x() && p.z < sensor.z()) {
+    if (!n.in_view && p.x > sensor.x() && p.z < sensor.z()) {
       const float dz = sensor.z() - p.z, dx = p.x - sensor.x(), dy = p.y - sensor.y();
-      n.descent2 = std::max(n.descent2, double(dz * dz / (dx * dx + dy * dy)));
+      n.in_view = double(dz * dz) >= need2 * double(dx * dx + dy * dy);
     }
     if (p.z < c.band_z_min || p.z > c.band_z_max) continue;
     if (p.x >= 0.0 && p.x <= c.box_x_max) n.x_last = std::max(n.x_last, double(p.x));
@@ -175,14 +185,6 @@ double shadowed_share(std::span<const Eigen::Vector2f> pts, const EndOfRowConfig
   return bins.share();
 }
 
-// 3D: whether the steepest ray ahead comes down to the band's floor by the box's far edge
-// (check_view). A sensor below the band, or beyond the box, is not judged by it.
-bool band_in_view(const EndOfRowConfig& c, const BoxCount& n, const Eigen::Vector3f& sensor) {
-  const double run = c.box_x_max - double(sensor.x());
-  if (!c.check_view || double(sensor.z()) <= c.band_z_min || run <= 0.0) return true;
-  return double(sensor.z()) - std::sqrt(n.descent2) * run <= c.band_z_min;
-}
-
 // The followed rows' extent: the nearest and the farthest x_max of the followed rows, when
 // tracked.
 struct Extent {
@@ -256,7 +258,7 @@ EndOfRowResult EndOfRowDetector::update(const core::PointCloud& cloud_base,
       planar ? count_scan(points_base, c, hw) : count_cloud(cloud_base, c, hw, sensor_base);
   EndOfRowResult r;
   // No evidence either way (the count keeps its state).
-  if (planar ? blind(n.near) : !band_in_view(c, n, sensor_base)) {
+  if (planar ? blind(n.near) : !n.in_view) {
     r.blind = true;
     r.box_seen = false;
     r.end_detected = declared_;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <random>
 
 #include "rownav/sim/field_config.hpp"
@@ -323,7 +324,7 @@ TEST(EndOfRow, ABlindPlanarFrameNeitherConfirmsNorClearsTheEnd) {
 // 0.75 m above flat, bare ground at base x = 0.3 m (the rows have ended), levelled, with the
 // robot pitched up by `pitch_deg`: only the ground hits of the downward rings.
 core::PointCloud bare_ground_sweep(double pitch_deg) {
-  constexpr double kDeg = 3.14159265358979 / 180.0;
+  constexpr double kDeg = std::numbers::pi / 180.0;
   core::PointCloud c;
   for (int ring = 0; ring < 16; ++ring) {
     const double down = (16.6 - 2.2 * ring - pitch_deg) * kDeg;  // ray slope below horizontal
