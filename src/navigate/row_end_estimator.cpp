@@ -2,8 +2,12 @@
 #include "rownav/navigate/row_end_estimator.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
+
+#include "rownav/core/angle.hpp"
 
 namespace rownav::navigate {
 
@@ -38,16 +42,26 @@ void RowEndEstimator::update(const track::RowTracking& t, const core::Pose2& T,
     const auto& r = t.rows[static_cast<std::size_t>(i)];
     if (r.x_max > config_.max_range || r.support < config_.min_support || r.last_seen < frame_stamp)
       return std::nullopt;
-    return T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
+    const Eigen::Vector2d end = T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
+    // Only the corridor's own rows end it: past the row ends the tracker may follow clutter
+    // across the headland, whose far end is no end of this corridor (issue 11, zoo:7:5 with a
+    // 2D scanner: a line 29 deg across pushed the exit on until its budget ran out).
+    const Eigen::Vector2d along = T.rotation() * r.line_base.direction;
+    if (std::abs(along.dot(centre_->normal())) >
+        std::sin(core::deg2rad(config_.row_angle_gate_deg)))
+      return std::nullopt;
+    return end;
   };
   if (auto e = end_of(t.left)) left_end_ = recent_median(left_ends_, *e);
   if (auto e = end_of(t.right)) right_end_ = recent_median(right_ends_, *e);
   if (left_end_ || right_end_) {
-    double arc = 0.0;
-    int n = 0;
+    // The exit clears both rows: the farther end. Rows need not end together (a missing last
+    // tree, a shorter row, a gap at one row's end); their mean turned the robot up to half a
+    // tree spacing short of the longer row, into its end tree's crown (issue 10, zoo:1:2, 1:27).
+    double arc = -std::numeric_limits<double>::infinity();
     for (const auto& e : {left_end_, right_end_})
-      if (e) arc += centre_->arc(*e), ++n;
-    end_arc_ = arc / n;
+      if (e) arc = std::max(arc, centre_->arc(*e));
+    end_arc_ = arc;
     // Settling: the end point held still (within settle_tolerance) while the robot drove on.
     const Eigen::Vector2d end = centre_->at(*end_arc_);
     robot_ = T.translation();

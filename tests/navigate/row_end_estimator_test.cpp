@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "rownav/core/angle.hpp"
+
 namespace rownav::navigate {
 namespace {
 
@@ -33,6 +37,41 @@ TEST(RowEndEstimator, RowEndsInViewAreMappedIntoOdomAlongTheCentreLine) {
   EXPECT_TRUE(e.right_end()->isApprox(Eigen::Vector2d(14.0, 4.1)));
   EXPECT_NEAR(*e.end_arc() - e.centre()->arc(T.translation()), 4.0, 1e-9);
   EXPECT_DOUBLE_EQ(e.spacing(), 1.8);
+}
+
+TEST(RowEndEstimator, RowsThatEndApartGiveTheFartherEndSoTheExitClearsBoth) {
+  // One row's last tree is missing (or the row is shorter): its support ends a tree spacing
+  // before the other row's. Either side, ahead of or behind the robot.
+  for (const double short_end : {0.5, -3.5}) {
+    for (const int short_row : {0, 1}) {
+      RowEndEstimator e;
+      auto t = corridor(4.0, 1.0);
+      t.rows[static_cast<std::size_t>(short_row)].x_max = short_end;
+      e.update(t, {}, 1.0);
+      ASSERT_TRUE(e.end_arc() && e.left_end() && e.right_end());
+      EXPECT_NEAR(*e.end_arc(), 4.0, 1e-9) << "short row " << short_row << " at " << short_end;
+    }
+  }
+}
+
+TEST(RowEndEstimator, ARowAcrossTheCorridorGivesNoEndOfIt) {
+  // Past the row ends the tracker can hold clutter: a line across the headland ending where the
+  // row would be, 6 m ahead. Its far end is no end of this corridor; the same far end on a row
+  // along the corridor is.
+  const RowEndEstimatorConfig c;
+  for (const double angle_deg : {2.0 * c.row_angle_gate_deg, 0.5 * c.row_angle_gate_deg}) {
+    auto t = corridor(2.0, 1.0);  // spacing 1.8, both rows end 2 m ahead
+    auto& r = t.rows[1];          // the left row, replaced by the clutter line
+    r.x_max = 6.0;
+    const double a = core::deg2rad(angle_deg);
+    r.line_base = core::Line2({0.0, 0.9 - 6.0 * std::tan(a)}, {std::cos(a), std::sin(a)});
+    RowEndEstimator e;
+    e.update(t, {}, 1.0);
+    ASSERT_TRUE(e.end_arc());
+    const bool across = angle_deg > c.row_angle_gate_deg;
+    EXPECT_EQ(e.left_end().has_value(), !across) << angle_deg << " deg";
+    EXPECT_NEAR(*e.end_arc(), across ? 2.0 : 6.0, 1e-9) << angle_deg << " deg";
+  }
 }
 
 TEST(RowEndEstimator, FarThinOrStaleRowsGiveNoEnd) {

@@ -27,6 +27,10 @@ struct RowEndEstimatorConfig {
   /// an extent cut by the sensor's reach or by an occluder moves along with the robot (rownav)
   double settle_distance = 1.0;
   double settle_tolerance = 0.3;  ///< [m] (rownav)
+  /// [deg] a row's end counts only when the row runs within this angle of the corridor's
+  /// centre line: past the ends the tracker can hold clutter lying across the headland, whose
+  /// far end would push the exit on (rownav)
+  double row_angle_gate_deg = 10.0;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -36,6 +40,7 @@ struct RowEndEstimatorConfig {
     v("spacing_window", s.spacing_window);
     v("settle_distance", s.settle_distance);
     v("settle_tolerance", s.settle_tolerance);
+    v("row_angle_gate_deg", s.row_angle_gate_deg);
   }
   void validate() const {
     core::check_positive(frames, "frames");
@@ -44,6 +49,7 @@ struct RowEndEstimatorConfig {
     core::check_positive(spacing_window, "spacing_window");
     core::check_non_negative(settle_distance, "settle_distance");
     core::check_positive(settle_tolerance, "settle_tolerance");
+    core::check_positive(row_angle_gate_deg, "row_angle_gate_deg");
   }
 };
 
@@ -57,7 +63,8 @@ class RowEndEstimator {
   void update(const track::RowTracking& t, const core::Pose2& T, double frame_stamp);
   /// The exit corridor's centre line (odom, oriented forward), once tracked.
   const std::optional<core::Line2>& centre() const { return centre_; }
-  /// [m] row ends along centre() (mean of the left and right ends), once seen or set.
+  /// [m] row end along centre(): the farther of the left and right ends (the exit must clear
+  /// both rows), once seen or set.
   const std::optional<double>& end_arc() const { return end_arc_; }
   void set_end_arc(double arc) { end_arc_ = arc; }
   /// [m] the estimated end's distance ahead of the robot along centre() when that end has
