@@ -46,20 +46,22 @@ const Sweep& sweep(const std::string& preset) {
   return cache.emplace(preset, std::move(s)).first->second;
 }
 
-nav::NavStack make_stack(const Sweep& s) {
+nav::NavStack make_stack(const Sweep& s, bool check_view) {
+  nav::NavStackConfig config;
+  config.end_of_row.check_view = check_view;  // issue 10's view check, on by default
   nav::NavStackParts parts;
   parts.pipeline = std::make_unique<rownav::detect::DetectionPipeline>(rownav::io::make_pipeline(
       "hough_skew", std::string(ROWNAV_SOURCE_DIR) + "/config/detect/vineyard.yaml",
       s.T_base_lidar));
   parts.tracker = rownav::io::make_tracker("model_filter", "");
   parts.controller = rownav::io::make_controller("stanley", "");
-  return nav::NavStack(nav::NavStackConfig{}, std::move(parts));
+  return nav::NavStack(config, std::move(parts));
 }
 
 /// One frame per iteration: the encoders and IMU of 0.1 s, the sweep, the command.
-void BM_NavStackFrame(benchmark::State& state, const std::string& preset) {
+void BM_NavStackFrame(benchmark::State& state, const std::string& preset, bool check_view) {
   const Sweep& s = sweep(preset);
-  nav::NavStack stack = make_stack(s);
+  nav::NavStack stack = make_stack(s, check_view);
   std::vector<double> ms;
   double t = 0.0;
   std::size_t frames_ok = 0;
@@ -81,8 +83,8 @@ void BM_NavStackFrame(benchmark::State& state, const std::string& preset) {
     const auto out = stack.command(t + 0.1);
     benchmark::DoNotOptimize(out.cmd);
     frames_ok += out.frame && out.frame->observation.status == rownav::core::DetectionStatus::ok;
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                     .count());
+    ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   std::sort(ms.begin(), ms.end());
   state.counters["p50_ms"] = ms[ms.size() / 2];
@@ -102,8 +104,13 @@ void BM_ReadEveryPoint(benchmark::State& state, const std::string& preset) {
   state.counters["points"] = double(s.cloud.size());
 }
 
-BENCHMARK_CAPTURE(BM_NavStackFrame, os1_16, std::string("os1_16"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_NavStackFrame, os1_64, std::string("os1_64"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_NavStackFrame, os1_16, std::string("os1_16"), true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_NavStackFrame, os1_64, std::string("os1_64"), true)
+    ->Unit(benchmark::kMillisecond);
+// The same without the end of row's view check: its per-frame cost (issue 14).
+BENCHMARK_CAPTURE(BM_NavStackFrame, os1_64_no_view_check, std::string("os1_64"), false)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ReadEveryPoint, os1_16, std::string("os1_16"))->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_ReadEveryPoint, os1_64, std::string("os1_64"))->Unit(benchmark::kMicrosecond);
 
