@@ -42,7 +42,6 @@ void RowEndEstimator::update(const track::RowTracking& t, const core::Pose2& T,
     const auto& r = t.rows[static_cast<std::size_t>(i)];
     if (r.x_max > config_.max_range || r.support < config_.min_support || r.last_seen < frame_stamp)
       return std::nullopt;
-    const Eigen::Vector2d end = T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
     // Only the corridor's own rows end it: past the row ends the tracker may follow clutter
     // across the headland, whose far end is no end of this corridor (issue 11, zoo:7:5 with a
     // 2D scanner: a line 29 deg across pushed the exit on until its budget ran out).
@@ -50,7 +49,7 @@ void RowEndEstimator::update(const track::RowTracking& t, const core::Pose2& T,
     if (std::abs(along.dot(centre_->normal())) >
         std::sin(core::deg2rad(config_.row_angle_gate_deg)))
       return std::nullopt;
-    return end;
+    return T * Eigen::Vector2d(r.x_max, r.line_base.y_at(r.x_max));
   };
   if (auto e = end_of(t.left)) left_end_ = recent_median(left_ends_, *e);
   if (auto e = end_of(t.right)) right_end_ = recent_median(right_ends_, *e);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "rownav/core/angle.hpp"
 
@@ -72,6 +74,22 @@ TEST(RowEndEstimator, ARowAcrossTheCorridorGivesNoEndOfIt) {
     EXPECT_EQ(e.left_end().has_value(), !across) << angle_deg << " deg";
     EXPECT_NEAR(*e.end_arc(), across ? 2.0 : 6.0, 1e-9) << angle_deg << " deg";
   }
+}
+
+TEST(RowEndEstimator, AnAngleGateOutsideZeroToNinetyDegreesIsRejectedByName) {
+  for (const double deg : {0.0, 120.0}) {
+    RowEndEstimatorConfig c;
+    c.row_angle_gate_deg = deg;
+    try {
+      c.validate();
+      ADD_FAILURE() << deg << " deg accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("row_angle_gate_deg"), std::string::npos) << e.what();
+    }
+  }
+  RowEndEstimatorConfig c;
+  c.row_angle_gate_deg = 90.0;
+  EXPECT_NO_THROW(c.validate());
 }
 
 TEST(RowEndEstimator, FarThinOrStaleRowsGiveNoEnd) {

@@ -49,7 +49,9 @@ struct RowEndEstimatorConfig {
     core::check_positive(spacing_window, "spacing_window");
     core::check_non_negative(settle_distance, "settle_distance");
     core::check_positive(settle_tolerance, "settle_tolerance");
+    // (0, 90]: past 90 deg the sine of the gate shrinks again (as row_end_poles' max_line_angle)
     core::check_positive(row_angle_gate_deg, "row_angle_gate_deg");
+    core::check_range(row_angle_gate_deg, 0.0, 90.0, "row_angle_gate_deg");
   }
 };
 
