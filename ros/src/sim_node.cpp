@@ -123,6 +123,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   joints_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 100);
   truth_pub_ = pnh_.advertise<nav_msgs::Odometry>("ground_truth", 20);
   state_sub_ = nh_.subscribe(c.state_topic, 10, &SimNode::on_state, this);
+  carry_sub_ = pnh_.subscribe("carry", 10, &SimNode::on_carry, this);
   ros::NodeHandle answers(nh_);
   answers.setCallbackQueue(&answers_);
   cmd_sub_ = answers.subscribe("cmd_vel", 10, &SimNode::on_cmd, this);
@@ -152,6 +153,16 @@ void SimNode::on_cmd(const geometry_msgs::Twist::ConstPtr& msg) {
   if (!std::isfinite(c.v) || !std::isfinite(c.vy) || !std::isfinite(c.omega)) c = {};
   const std::lock_guard<std::mutex> lock(mutex_);
   cmd_ = c;
+}
+
+void SimNode::on_carry(const geometry_msgs::Pose2D::ConstPtr& msg) {
+  if (!std::isfinite(msg->x) || !std::isfinite(msg->y) || !std::isfinite(msg->theta)) {
+    ROS_WARN("rownav_sim_node: ~carry with a non-finite value ignored");
+    return;
+  }
+  ROS_INFO("rownav_sim_node: carrying the robot by (%.2f m, %.2f m, %.1f deg)", msg->x, msg->y,
+           msg->theta * 180.0 / M_PI);
+  carry_ = core::Pose2(msg->x, msg->y, msg->theta);
 }
 
 void SimNode::sent_cloud(const ros::Time& stamp) {
@@ -207,6 +218,8 @@ int SimNode::run() {
       const std::lock_guard<std::mutex> lock(mutex_);
       cmd = cmd_;
     }
+    if (carry_) sim_->carry(*carry_, config_.carry_speed, config_.carry_yaw_rate);
+    carry_.reset();
     sim_->step(cmd, *sink_);
     ros::spinOnce();
     if (state_ == "done" || state_ == "safe_stop") break;

@@ -9,9 +9,8 @@ namespace {
 
 Eigen::Isometry3d lerp(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(a.linear())
-                   .slerp(s, Eigen::Quaterniond(b.linear()))
-                   .toRotationMatrix();
+  T.linear() =
+      Eigen::Quaterniond(a.linear()).slerp(s, Eigen::Quaterniond(b.linear())).toRotationMatrix();
   T.translation() = (1.0 - s) * a.translation() + s * b.translation();
   return T;
 }
@@ -99,6 +98,7 @@ void Simulator::step(const core::Twist2& cmd, SimSink& sink) {
   // Step to (n + 1) dt rather than adding dt, so stamps stay on the grid instead of drifting.
   ++n_steps_;
   robot_.step(cmd, static_cast<double>(n_steps_) * dt_ - robot_.state().stamp);
+  step_carry();
   const double t = time();
   history_.emplace_back(t, pose3d(robot_.state().pose));
   const double keep = 2.0 / config_.lidar.rate_hz + 0.1;
@@ -116,6 +116,32 @@ void Simulator::step(const core::Twist2& cmd, SimSink& sink) {
   emit_lidar(*out);
   if (due(n_truth_, config_.ground_truth_rate_hz, t)) out->on_ground_truth(truth_now_);
   last_twist_ = robot_.state().twist;
+}
+
+void Simulator::carry(const core::Pose2& delta_base, double speed, double yaw_rate) {
+  const core::Pose2& T = robot_.state().pose;
+  Carry c;
+  c.remaining = T.rotation() * Eigen::Vector2d(delta_base.x, delta_base.y);
+  c.turn = delta_base.theta;
+  c.speed = std::isfinite(speed) ? speed : 0.0;
+  c.yaw_rate = std::isfinite(yaw_rate) ? yaw_rate : 0.0;
+  carry_ = c;
+}
+
+void Simulator::step_carry() {
+  if (!carry_) return;
+  Carry& c = *carry_;
+  // The share of what is left that this step moves: the slower of the line and the turn.
+  const double run = c.remaining.norm(), turn = std::abs(c.turn);
+  double share = 1.0;
+  if (run > 0.0 && c.speed > 0.0) share = std::min(share, c.speed * dt_ / run);
+  if (turn > 0.0 && c.yaw_rate > 0.0) share = std::min(share, c.yaw_rate * dt_ / turn);
+  const core::Pose2& T = robot_.state().pose;
+  const Eigen::Vector2d move = share * c.remaining;
+  robot_.place({T.x + move.x(), T.y + move.y(), T.theta + share * c.turn});
+  c.remaining -= move;
+  c.turn -= share * c.turn;
+  if (share >= 1.0) carry_.reset();
 }
 
 std::optional<ObstacleBox> Simulator::person_at(double t) const {

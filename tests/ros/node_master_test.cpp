@@ -2,7 +2,9 @@
 // it starts with list parameters given on the command line, publishes its state and
 // diagnostics, and stops cleanly; a bad parameter is one line on the terminal; its ~pause /
 // ~start / ~stop services, called through ros::ServiceClient while rownav_sim_node drives it,
-// zero cmd_vel and resume (issue 15).
+// zero cmd_vel and resume, and refuse to resume once the robot was pushed into another corridor
+// during the pause (issue 15).
+#include <geometry_msgs/Pose2D.h>
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
@@ -141,10 +143,12 @@ TEST_F(NodeAgainstAMaster, PauseStartStopServicesZeroTheCommandAndResume) {
   const std::string mission = config + "/missions/two_corridors.yaml";
   const std::string sim_log = (dir / "sim.log").string(), log = (dir / "node.log").string();
   const PrintOnFailure print{{log, sim_log}};
-  Background sim(
-      env_ + "exec '" ROWNAV_SIM_NODE_BINARY "' _field:=" + (dir / "field.yaml").string() +
-      " _robot:=" + robot + " _sensors:=" + config + "/sensors/os1_16.yaml _mission:=" + mission +
-      " _rate_factor:=1.0 _time_limit:=60 > '" + sim_log + "' 2>&1");
+  // Line-buffered: the test reads the sim node's log while it runs (the carry's line).
+  Background sim(env_ +
+                 "ROSCONSOLE_STDOUT_LINE_BUFFERED=1 exec '" ROWNAV_SIM_NODE_BINARY "' _field:=" +
+                 (dir / "field.yaml").string() + " _robot:=" + robot + " _sensors:=" + config +
+                 "/sensors/os1_16.yaml _mission:=" + mission +
+                 " _rate_factor:=1.0 _time_limit:=60 > '" + sim_log + "' 2>&1");
   for (int i = 0;
        i < 100 && shell(env_ + "rostopic list 2>/dev/null").find("/clock") == std::string::npos;
        ++i)
@@ -188,6 +192,22 @@ TEST_F(NodeAgainstAMaster, PauseStartStopServicesZeroTheCommandAndResume) {
             "new mission started (the last one stopped in in_row), 2 corridors from corridor 0");
   EXPECT_TRUE(listener.wait_driving(0.1, std::chrono::seconds(3)));  // a new mission, in place
   EXPECT_EQ(listener.state(), "in_row");
+
+  // Paused again, the robot is pushed one spacing to the left, across the row into corridor 1
+  // (the sim node's ~carry, 0.5 m/s; its wheels do not turn): the resume is refused, the pause
+  // stays (the same guard as RowNavCore's unit test, here through the real transport).
+  EXPECT_TRUE(call("pause").response.success);
+  ros::Publisher carry = nh.advertise<geometry_msgs::Pose2D>("/rownav_sim_node/carry", 1, true);
+  geometry_msgs::Pose2D push;
+  push.y = 1.8;
+  carry.publish(push);  // latched: delivered once the sim node is connected
+  std::this_thread::sleep_for(std::chrono::milliseconds(4500));  // 3.6 s at 0.5 m/s, and frames
+  const std_srvs::Trigger refused = call("start");
+  EXPECT_FALSE(refused.response.success);
+  EXPECT_EQ(refused.response.message.rfind("not resumed: ", 0), 0u) << refused.response.message;
+  EXPECT_GT(zero_commands(listener, Clock::now() + kGrace, std::chrono::milliseconds(1000)), 5);
+  EXPECT_EQ(listener.state(), "paused");
+  EXPECT_NE(read_file(sim_log).find("carrying the robot by (0.00 m, 1.80 m"), std::string::npos);
   spinner.stop();
   ros::shutdown();
   EXPECT_TRUE(node.running());

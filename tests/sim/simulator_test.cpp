@@ -310,6 +310,44 @@ TEST(Simulator, StreamRatesAndStamps) {
   EXPECT_NEAR(tg.back(), 2.0, 1e-6);
 }
 
+// Issue 15: a push, a hand or a tow moves the robot without its wheels turning (the ROS sim
+// node's ~carry): the pose moves at the carry's speed, the encoders count nothing, the ground
+// truth sees the next corridor.
+TEST(Simulator, ACarryMovesTheRobotAtItsSpeedAndTheEncodersDoNotSeeIt) {
+  const Field field = small_vineyard(1.8, GrowthStage::low);
+  const double s = field.row_spacing;
+  Simulator sim(field, RobotConfig{}, SimConfig{}, {12.0, 2.5 * s, 0.0});
+  Capture cap;
+  run(sim, cap, 0.5);
+  ASSERT_FALSE(cap.truth.empty());
+  EXPECT_EQ(cap.truth.back().corridor, 2);
+  const core::WheelEncoderSample before = cap.encoders.back();
+  sim.carry({0.0, s, 0.0}, 0.5, 0.5);  // one spacing to the left, at 0.5 m/s
+  EXPECT_TRUE(sim.carrying());
+  run(sim, cap, 1.0);
+  EXPECT_NEAR(sim.robot_state().pose.y, 2.5 * s + 0.5, 1e-9);  // half a metre in a second
+  EXPECT_NEAR(sim.robot_state().pose.x, 12.0, 1e-9);
+  EXPECT_TRUE(sim.carrying());
+  run(sim, cap, 3.0);
+  EXPECT_FALSE(sim.carrying());
+  EXPECT_NEAR(sim.robot_state().pose.y, 3.5 * s, 1e-9);
+  EXPECT_NEAR(sim.robot_state().pose.theta, 0.0, 1e-12);
+  EXPECT_EQ(cap.encoders.back().left_ticks, before.left_ticks);
+  EXPECT_EQ(cap.encoders.back().right_ticks, before.right_ticks);
+  EXPECT_EQ(cap.truth.back().corridor, 3);
+
+  // In the base frame: facing +y, "forward" is +y; a turn at its yaw rate; speed 0 is at once.
+  Simulator turned(field, RobotConfig{}, SimConfig{}, {12.0, 2.5 * s, core::deg2rad(90.0)});
+  turned.carry({1.0, 0.0, 0.5}, 10.0, 0.25);
+  run(turned, cap, 1.0);
+  EXPECT_NEAR(turned.robot_state().pose.theta, core::deg2rad(90.0) + 0.25, 1e-9);
+  EXPECT_NEAR(turned.robot_state().pose.y, 2.5 * s + 0.5, 1e-9);  // the turn sets the pace
+  turned.carry({0.0, -1.0, 0.0}, 0.0, 0.0);
+  run(turned, cap, 0.01);
+  EXPECT_FALSE(turned.carrying());
+  EXPECT_NEAR(turned.robot_state().pose.x, 12.0 + std::cos(0.25), 1e-9);  // right of heading
+}
+
 TEST(Simulator, GroundTruthInALane) {
   const Field field = small_vineyard(1.8, GrowthStage::medium);
   const double s = field.row_spacing;

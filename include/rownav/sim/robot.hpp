@@ -76,6 +76,10 @@ class Robot {
 
   const RobotState& state() const { return state_; }
   const RobotConfig& config() const { return config_; }
+  /// Puts the robot at `T_world_base` without its wheels turning, as a push, a hand or a tow
+  /// moves it (Simulator::carry): the wheel angles and speeds and the twist are kept, so the
+  /// encoders and the IMU do not see the move.
+  void place(const core::Pose2& T_world_base) { state_.pose = T_world_base; }
   /// Footprint rectangle corners in the world frame (counter-clockwise).
   std::array<Eigen::Vector2d, 4> footprint_world() const;
 

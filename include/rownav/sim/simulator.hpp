@@ -13,6 +13,8 @@
 #include "rownav/core/scan2d.hpp"
 #include "rownav/core/sensor_samples.hpp"
 #include "rownav/core/twist.hpp"
+#include "rownav/sim/fault_config.hpp"
+#include "rownav/sim/faults.hpp"
 #include "rownav/sim/field.hpp"
 #include "rownav/sim/field_truth.hpp"
 #include "rownav/sim/ground_contact.hpp"
@@ -20,8 +22,6 @@
 #include "rownav/sim/lidar.hpp"
 #include "rownav/sim/lidar_presets.hpp"
 #include "rownav/sim/proprioception.hpp"
-#include "rownav/sim/fault_config.hpp"
-#include "rownav/sim/faults.hpp"
 #include "rownav/sim/ray_caster.hpp"
 #include "rownav/sim/robot.hpp"
 #include "rownav/sim/sim_sink.hpp"
@@ -31,10 +31,10 @@ namespace rownav::sim {
 /// Sensor suite and loop rates of a simulation.
 struct SimConfig {
   LidarConfig lidar = lidar_preset("os1_16");  ///< LiDAR model (rate, FOV, noise, mount)
-  EncoderConfig encoders;  ///< wheel encoders
-  ImuConfig imu;           ///< IMU
-  GnssConfig gnss;         ///< GNSS (disabled by default: rownav is map-free and RTK-free)
-  double physics_rate_hz = 100.0;      ///< [Hz] robot integration rate
+  EncoderConfig encoders;                      ///< wheel encoders
+  ImuConfig imu;                               ///< IMU
+  GnssConfig gnss;                 ///< GNSS (disabled by default: rownav is map-free and RTK-free)
+  double physics_rate_hz = 100.0;  ///< [Hz] robot integration rate
   double ground_truth_rate_hz = 20.0;  ///< [Hz] ground-truth samples emitted
   double truth_reach = 10.0;           ///< [m] rows within this distance are listed in the truth
   std::uint64_t seed = 1;              ///< seeds every noise source
@@ -85,6 +85,14 @@ class Simulator {
   std::optional<ObstacleBox> person_at(double t) const;
   /// T_world_base in 3D (terrain height, roll and pitch; see rest_on_ground) for a planar pose.
   Eigen::Isometry3d pose3d(const core::Pose2& T_world_base) const;
+  /// Carries the robot by `delta_base` (x forward, y left, theta: its base frame now) over the
+  /// next steps, at `speed` [m/s] along the straight line and `yaw_rate` [rad/s], whatever it is
+  /// commanded, without its wheels turning: a person pushing it, a tow, a hand (issue 15: the ROS
+  /// sim node's ~carry). The LiDAR sees the move, the encoders and the IMU do not. A call
+  /// replaces a carry still under way; speed or yaw_rate <= 0 (or not finite) moves it at once.
+  void carry(const core::Pose2& delta_base, double speed, double yaw_rate);
+  /// A carry is still under way.
+  bool carrying() const { return carry_.has_value(); }
 
  private:
   void emit_lidar(SimSink& sink);
@@ -92,6 +100,7 @@ class Simulator {
   Eigen::Isometry3d pose_at(double t) const;
   void update_truth();
   void update_person(double t);
+  void step_carry();
 
   const Field& field_;
   SimConfig config_;
@@ -110,6 +119,14 @@ class Simulator {
   // Samples emitted so far per stream; due times are n / rate, so stamps do not drift.
   std::int64_t n_sweeps_ = 0, n_encoders_ = 0, n_imu_ = 0, n_gnss_ = 0, n_truth_ = 0;
   std::int64_t n_steps_ = 0;
+  /// What is left of a carry, in the world frame (Simulator::carry).
+  struct Carry {
+    Eigen::Vector2d remaining;  ///< [m]
+    double turn = 0.0;          ///< [rad]
+    double speed = 0.0;         ///< [m/s]
+    double yaw_rate = 0.0;      ///< [rad/s]
+  };
+  std::optional<Carry> carry_;
   core::Twist2 last_twist_;
 };
 

@@ -5,6 +5,7 @@
 /// odom -> base_link -> LiDAR, the true pose), drives the simulated robot with `cmd_vel`, and
 /// scores the run from the ground truth (SimScore), so that rownav_node, or any other row
 /// follower, can be driven in rownav's fields and measured by rownav's truth.
+#include <geometry_msgs/Pose2D.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/Vector3Stamped.h>
 #include <ros/callback_queue.h>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
+#include "rownav/core/pose2.hpp"
 #include "rownav/core/sensor_samples.hpp"
 #include "rownav/core/twist.hpp"
 #include "rownav/localize/localizer.hpp"
@@ -68,6 +70,12 @@ struct SimNodeConfig {
   /// the follower computes its own (rownav_node ~odometry joint_states ~publish_tf), so that
   /// two nodes do not broadcast the same transform
   bool publish_odometry = true;
+  /// [m/s] a geometry_msgs/Pose2D on ~carry (x forward, y left, theta: the robot's base frame
+  /// when it arrives) moves the robot by that much at this speed without its wheels turning: a
+  /// person pushing it, a tow (sim::Simulator::carry; issue 15: a robot moved while paused).
+  /// 0.5 m/s: a walking push
+  double carry_speed = 0.5;
+  double carry_yaw_rate = 0.5;  ///< [rad/s] ... and turns it at this rate
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -88,6 +96,8 @@ struct SimNodeConfig {
     v("right_wheel_joint", s.right_wheel_joint);
     v("steering_joint", s.steering_joint);
     v("publish_odometry", s.publish_odometry);
+    v("carry_speed", s.carry_speed);
+    v("carry_yaw_rate", s.carry_yaw_rate);
   }
   void validate() const {
     core::check(!field.empty(), "field", "required (a field YAML or zoo:SEED:INDEX)");
@@ -97,6 +107,8 @@ struct SimNodeConfig {
     core::check(!left_wheel_joint.empty(), "left_wheel_joint", "must not be empty");
     core::check(!right_wheel_joint.empty(), "right_wheel_joint", "must not be empty");
     core::check(!steering_joint.empty(), "steering_joint", "must not be empty");
+    core::check_positive(carry_speed, "carry_speed");
+    core::check_positive(carry_yaw_rate, "carry_yaw_rate");
   }
 };
 
@@ -143,6 +155,7 @@ class SimNode {
  private:
   class Sink;
   void on_cmd(const geometry_msgs::Twist::ConstPtr& msg);
+  void on_carry(const geometry_msgs::Pose2D::ConstPtr& msg);
   void on_state(const std_msgs::String::ConstPtr& msg);
   void on_tracking(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
   void sent_cloud(const ros::Time& stamp);
@@ -161,7 +174,7 @@ class SimNode {
   ros::Publisher clock_pub_, cloud_pub_, odom_pub_, imu_pub_, truth_pub_, joints_pub_;
   int ticks_per_rev_ = 1;    ///< the simulated encoders' resolution (counts -> joint angle)
   WheelJointConfig joints_;  ///< the wheel joints of `joint_states` (from the parameters)
-  ros::Subscriber cmd_sub_, state_sub_, tracking_sub_;
+  ros::Subscriber cmd_sub_, state_sub_, tracking_sub_, carry_sub_;
   /// cmd_vel and the tracking output are taken on their own thread, when they arrive
   ros::CallbackQueue answers_;
   std::unique_ptr<ros::AsyncSpinner> answer_spinner_;
@@ -171,6 +184,7 @@ class SimNode {
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   core::Twist2 cmd_;
+  std::optional<core::Pose2> carry_;  ///< a ~carry not yet handed to the simulator
   std::string state_;
   SimScore score_;
   friend class Sink;
