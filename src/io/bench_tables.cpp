@@ -76,9 +76,9 @@ void add_malavazi(const std::vector<CellResult>& all, std::vector<ResultTable>& 
     for (const auto& g : groups) {
       if (g.labels[0] != field) continue;
       const auto level = weed_level_of(field);
-      const auto paper = level ? malavazi_2018_figures(*level, g.labels[1],
-                                                       g.labels[2] != "unfiltered")
-                               : std::nullopt;
+      const auto paper =
+          level ? malavazi_2018_figures(*level, g.labels[1], g.labels[2] != "unfiltered")
+                : std::nullopt;
       const auto fig = [&](double MalavaziFigures::*m) -> std::optional<double> {
         if (!paper || !std::isfinite((*paper).*m)) return std::nullopt;
         return (*paper).*m;
@@ -101,42 +101,45 @@ void add_malavazi(const std::vector<CellResult>& all, std::vector<ResultTable>& 
 }
 
 void add_bertoglio(const std::vector<CellResult>& all, std::vector<ResultTable>& out) {
+  // The robot file tells the protocol's speeds apart (bench/scenarios/bertoglio.yaml's *_2ms).
   const auto by_pipeline = group_by(all, BenchTable::bertoglio_003, [](const BenchCell& c) {
-    return std::vector<std::string>{c.field_name(), c.pipeline()};
+    return std::vector<std::string>{c.field_name(), c.robot.stem().string(), c.pipeline()};
   });
   if (by_pipeline.empty()) return;
   ResultTable t1{"bertoglio_003_table1",
                  "003 Table I (Bertoglio 2023): centre displacement and corridor width",
-                 {"field", "pipeline"},
-                 {"runs", "displacement mean [m]", "displacement max [m]", "width mean [m]",
-                  "width max [m]", "width min [m]"},
+                 {"field", "robot", "pipeline"},
+                 {"runs", "success [%]", "top speed [m/s]", "displacement mean [m]",
+                  "displacement max [m]", "width mean [m]", "width max [m]", "width min [m]"},
                  {},
                  1};
   for (const auto& g : by_pipeline)
     t1.rows.push_back(
         {g.labels,
-         {double(g.runs.size()), aggregate(g.runs, "in_row_mean_displacement", Aggregate::mean),
+         {double(g.runs.size()), rate(g.runs, [](const auto& s) { return is_true(s, "success"); }),
+          aggregate(g.runs, "speed_max", Aggregate::max),
+          aggregate(g.runs, "in_row_mean_displacement", Aggregate::mean),
           aggregate(g.runs, "in_row_max_displacement", Aggregate::max),
           aggregate(g.runs, "corridor_width_mean", Aggregate::mean),
           aggregate(g.runs, "corridor_width_max", Aggregate::max),
           aggregate(g.runs, "corridor_width_min", Aggregate::min)}});
   out.push_back(std::move(t1));
   const auto by_policy = group_by(all, BenchTable::bertoglio_003, [](const BenchCell& c) {
-    return std::vector<std::string>{c.field_name(),
+    return std::vector<std::string>{c.field_name(), c.robot.stem().string(),
                                     c.row_end_policy.empty() ? "default" : c.row_end_policy};
   });
   // 003 Table II: every turn frame's end points against the pole centres (its measure), beside
   // the paper's simulation column and the row ends rownav's end of row estimated in the rows.
   ResultTable t2{"bertoglio_003_table2",
                  "003 Table II (Bertoglio 2023): row-end point error per policy",
-                 {"field", "row-end policy"},
+                 {"field", "robot", "row-end policy"},
                  {"runs", "turn end points", "not row ends", "pole error mean [m]",
                   "pole error max [m]", "pole error min [m]", "paper mean [m]", "paper max [m]",
                   "paper min [m]", "estimated row end error mean [m]"},
                  {},
                  3};
   for (const auto& g : by_policy) {
-    const auto paper = bertoglio_2023_pole_figures(g.labels[1]);
+    const auto paper = bertoglio_2023_pole_figures(g.labels[2]);
     const auto fig = [&](double BertoglioPoleFigures::*m) -> Value {
       return paper ? Value((*paper).*m) : std::nullopt;
     };
@@ -286,7 +289,7 @@ std::optional<double> aggregate(const std::vector<const RunSummary*>& runs, cons
 }
 
 std::vector<CellResult> collect_results(const std::vector<BenchCell>& cells, const fs::path& out,
-                                       std::vector<std::string>* warnings) {
+                                        std::vector<std::string>* warnings) {
   std::vector<CellResult> results;
   for (const auto& c : cells) {
     CellResult r{c, std::nullopt};

@@ -236,6 +236,7 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
     const auto& s = run.samples[i];
     r.collision = r.collision || s.collision;
     r.plants_crushed = std::max(r.plants_crushed, s.plants_crushed);
+    r.speed_max = std::max(r.speed_max, std::abs(s.twist.v));
     if (i > 0)
       r.distance +=
           (s.T_world_base.translation() - run.samples[i - 1].T_world_base.translation()).norm();

@@ -224,6 +224,7 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   j["line_intercept_error_std"] = num(s.line_intercept_error_std);
   j["tracking_lost_in_row"] = s.tracking_lost_in_row;
   j["sim_time"] = s.sim_time, j["wall_time"] = s.wall_time, j["distance"] = s.distance;
+  j["speed_max"] = s.speed_max;
   j["crushed"] = json::array();
   for (const auto& c : s.crushes)
     j["crushed"].push_back({{"stamp", c.stamp},

@@ -96,6 +96,51 @@ TEST(BenchTables, NehmePerCorridorAndTiming) {
   EXPECT_EQ(find(tables, "lan_001"), nullptr);  // no run feeds it
 }
 
+// Issue 11: the 003 protocol at 0.8 and at 2 m/s (robot files skid_steer / skid_steer_2ms) is
+// two rows of each table, not one mean over both speeds; Table II finds the paper's figures by
+// the policy.
+TEST(BenchTables, BertoglioRowsAreSplitByRobotFileSoSpeedsDoNotMix) {
+  TempDir dir("bench");
+  std::vector<BenchCell> cells;
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"config/robots/skid_steer.yaml",
+       R"({"success": true, "speed_max": 0.8, "in_row_mean_displacement": 0.03,
+           "turn_row_end_error_mean": 0.2})"},
+      {"bench/configs/skid_steer_2ms.yaml",
+       R"({"success": false, "speed_max": 1.9, "in_row_mean_displacement": 0.05,
+           "turn_row_end_error_mean": 0.4})"}};
+  for (const auto& [robot, text] : runs) {
+    BenchCell c = cell(robot, "cone_rect", "none", {BenchTable::bertoglio_003});
+    c.id = fs::path(robot).stem().string();
+    c.robot = robot;
+    c.row_end_policy = "nearest";
+    fs::create_directories(cell_dir(dir.path(), c));
+    std::ofstream(cell_dir(dir.path(), c) / "summary.json") << text;
+    cells.push_back(c);
+  }
+  const auto tables = build_tables(collect_results(cells, dir.path()));
+  const auto* t1 = find(tables, "bertoglio_003_table1");
+  ASSERT_NE(t1, nullptr);
+  ASSERT_EQ(t1->rows.size(), 2u);
+  EXPECT_EQ(t1->rows[0].labels,
+            (std::vector<std::string>{"weeds_some", "skid_steer", "cone_rect+none+lookahead_pid"}));
+  EXPECT_EQ(t1->rows[1].labels[1], "skid_steer_2ms");
+  const auto& slow = t1->rows[0].values;  // runs, success, top speed, displacement mean
+  const auto& fast = t1->rows[1].values;
+  EXPECT_DOUBLE_EQ(*slow[1], 100.0);
+  EXPECT_DOUBLE_EQ(*fast[1], 0.0);
+  EXPECT_DOUBLE_EQ(*slow[2], 0.8);
+  EXPECT_DOUBLE_EQ(*fast[2], 1.9);
+  EXPECT_DOUBLE_EQ(*fast[3], 0.05);
+  const auto* t2 = find(tables, "bertoglio_003_table2");
+  ASSERT_NE(t2, nullptr);
+  ASSERT_EQ(t2->rows.size(), 2u);
+  EXPECT_EQ(t2->rows[1].labels,
+            (std::vector<std::string>{"weeds_some", "skid_steer_2ms", "nearest"}));
+  EXPECT_DOUBLE_EQ(*t2->rows[1].values[3], 0.4);
+  EXPECT_DOUBLE_EQ(*t2->rows[1].values[6], 0.205);  // the paper's Nearest mean
+}
+
 TEST(BenchTables, FilesShowNaAndNull) {
   TempDir dir("bench");
   const auto files = write_tables(dir / "out", "test", build_tables(hand_written(dir.path())));

@@ -9,9 +9,10 @@
 /// - 004 Tables 1-3 (Malavazi 2018), one table per field (weed level), a row per detector x
 ///   filtered (a tracker) / unfiltered (tracker `none`): success [%], success without crushed
 ///   plants [%], path-length ratio mean / max / min;
-/// - 003 Table I (Bertoglio 2023), a row per field x pipeline: centre displacement mean / max,
-///   corridor width mean / max / min; Table II, a row per field x row-end policy: row-end point
-///   error mean / max;
+/// - 003 Table I (Bertoglio 2023), a row per field x robot file x pipeline (the robot file
+///   tells the protocol's speeds apart): success [%], top speed, centre displacement mean / max,
+///   corridor width mean / max / min; Table II, a row per field x robot file x row-end policy:
+///   row-end point error mean / max;
 /// - 000 Tables 1-2 (Nehme 2021), one table per field: lateral RMSE per corridor (per_corridor),
 ///   a column per pipeline, last row the run's whole in-row RMSE;
 /// - 001 Tables 2-3 (Lan 2021), a row per field x pipeline: line slope / intercept error
@@ -28,8 +29,9 @@
 
 namespace rownav::io {
 
-/// A cell and its summary (nullopt when the run left none). Not io::RunResult (closed_loop_runner.hpp):
-/// two classes of one name in one namespace broke the tests linking both (ODR).
+/// A cell and its summary (nullopt when the run left none). Not io::RunResult
+/// (closed_loop_runner.hpp): two classes of one name in one namespace broke the tests linking both
+/// (ODR).
 struct CellResult {
   BenchCell cell;
   std::optional<RunSummary> summary;
@@ -53,8 +55,8 @@ struct ResultTable {
 /// Reads OUT/runs/<id>/summary.json of every cell; a malformed one counts as missing and is
 /// reported on `warnings` (one line each).
 std::vector<CellResult> collect_results(const std::vector<BenchCell>& cells,
-                                       const std::filesystem::path& out,
-                                       std::vector<std::string>* warnings = nullptr);
+                                        const std::filesystem::path& out,
+                                        std::vector<std::string>* warnings = nullptr);
 
 /// The tables fed by the runs, in the order of BenchTable, rows in the order of first
 /// appearance. Tables without any run are left out.

@@ -51,6 +51,8 @@ struct RunSummary {
   std::optional<double> line_slope_error_mean, line_slope_error_std;
   std::optional<double> line_intercept_error_mean, line_intercept_error_std;
   double sim_time = 0.0, wall_time = 0.0, distance = 0.0;
+  /// [m/s] the highest true forward speed of the run (003 sec. III: up to 2 m/s in simulation)
+  double speed_max = 0.0;
   std::vector<CorridorMetrics> per_corridor;
   std::vector<CrushRecord> crushes;  ///< where each crushed plant was (summary.json `crushed`)
   PlaceMetrics place;                ///< the map stage (issue 12); empty when it was off
