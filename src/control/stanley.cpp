@@ -13,6 +13,7 @@ void StanleyConfig::validate() const {
   core::check_positive(k, "k");
   core::check_positive(softening_speed, "softening_speed");
   core::check_positive(yaw_gain, "yaw_gain");
+  core::check_non_negative(yaw_gain_per_speed, "yaw_gain_per_speed");
   core::check_non_negative(wheelbase, "wheelbase");
   core::check(std::isfinite(front_axle_x), "front_axle_x", "must be finite");
   core::check_range(max_steer_deg, 1.0, 89.0, "max_steer_deg");
@@ -35,8 +36,9 @@ core::Twist2 StanleyController::compute(const ControlInput& in) {
       -(theta_e + std::atan(config_.k * e / (speed + config_.softening_speed)));
   const double max_steer = config_.max_steer_deg * std::numbers::pi / 180.0;
   const double delta = std::clamp(delta_raw, -max_steer, max_steer);
+  const double gain = std::max(config_.yaw_gain, config_.yaw_gain_per_speed * std::abs(v));
   const double omega =
-      config_.wheelbase > 0.0 ? v * std::tan(delta) / config_.wheelbase : config_.yaw_gain * delta;
+      config_.wheelbase > 0.0 ? v * std::tan(delta) / config_.wheelbase : gain * delta;
   return {v, 0.0, omega};
 }
 

@@ -114,6 +114,28 @@ TEST(Stanley, ErrorDecaysAtRateK) {
   EXPECT_GT(r.final_abs_lateral, 0.05 * std::exp(-2.0 * cfg.k) * 0.5);
 }
 
+// Issue 11 (Bertoglio 2023 at 2 m/s): the heading loop of a robot that turns in place closes in
+// the same distance at any speed above 0.8 m/s, as the bicycle model's v tan(delta) / L does;
+// up to 0.8 m/s it is yaw_gain delta as before.
+TEST(Stanley, AboveTheRowSpeedTheYawGainGrowsWithSpeed) {
+  StanleyConfig cfg;  // yaw_gain 2 /s, yaw_gain_per_speed 2.5 /m
+  ControlInput in;
+  in.heading_error = 0.1;  // delta = -0.1 rad with e = 0
+  auto omega_at = [&](const StanleyConfig& c, double v) {
+    in.speed_ref = v;
+    in.speed = v;
+    return StanleyController(c).compute(in).omega;
+  };
+  EXPECT_DOUBLE_EQ(omega_at(cfg, 0.4), -0.2);
+  EXPECT_DOUBLE_EQ(omega_at(cfg, 0.8), -0.2);
+  EXPECT_NEAR(omega_at(cfg, 2.0), -0.5, 1e-12);  // 2.5 /m x 2 m/s
+  StanleyConfig fixed = cfg;
+  fixed.yaw_gain_per_speed = 0.0;
+  EXPECT_DOUBLE_EQ(omega_at(fixed, 2.0), -0.2);
+  fixed.yaw_gain_per_speed = -1.0;
+  EXPECT_THROW(StanleyController{fixed}, std::invalid_argument);
+}
+
 TEST(FirPid, SteepModelsCorrectACentredTurnedRobot) {
   // Malavazi 2018 Fig. 7: centred between two steep models the plain error is 0; the safety
   // gives a correction towards the path direction, slows down and bounds omega.
