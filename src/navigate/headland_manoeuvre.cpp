@@ -224,12 +224,11 @@ double HeadlandManoeuvre::pole_spacing() const {
       .value_or(spacing_);
 }
 
-Eigen::Vector2d HeadlandManoeuvre::path_point(const TurnPrimitive& p, std::size_t i) const {
-  return p.path[i] + Eigen::Vector2d(0, p.anchor[i] * (target_y_ - planned_y_));
-}
-
 core::Twist2 HeadlandManoeuvre::follow(const TurnPrimitive& p, const core::Pose2& T_turn_base) {
-  auto point = [&](std::size_t i) { return path_point(p, i); };
+  const double dy = target_y_ - planned_y_;
+  auto point = [&](std::size_t i) {
+    return Eigen::Vector2d(p.path[i] + Eigen::Vector2d(0, p.anchor[i] * dy));
+  };
   const Eigen::Vector2d q = T_turn_base.translation();
   const std::size_t last = p.path.size() - 1;
   while (cursor_ < last && (point(cursor_ + 1) - q).norm() <= (point(cursor_) - q).norm() + 0.02)
@@ -259,23 +258,8 @@ core::Twist2 HeadlandManoeuvre::follow(const TurnPrimitive& p, const core::Pose2
     const double v = -config_.turn_speed;
     return {v, 0.0, v * curvature};
   }
-  const double v = std::min(config_.turn_speed, stopping_speed(p, q));
+  const double v = config_.turn_speed;
   return {v, 0.0, v * curvature};
-}
-
-double HeadlandManoeuvre::stopping_speed(const TurnPrimitive& p, const Eigen::Vector2d& q) const {
-  // A rotation in place starts from standstill: the leg before it ends at v = 0, and d before
-  // its end at v = sqrt(2 a d), the speed the limiter can still brake from within d.
-  const bool stops = index_ + 1 < primitives_.size() && primitives_[index_ + 1].rotate;
-  if (!stops || !(plan_.max_decel > 0.0)) return config_.turn_speed;
-  // Along the path from the robot past its nearest point (cursor_), never below the straight
-  // distance to the end: the leg is done a few centimetres before it, never at v = 0 short of it.
-  const std::size_t last = p.path.size() - 1;
-  double along = cursor_ < last ? (path_point(p, cursor_ + 1) - q).norm() : 0.0;
-  for (std::size_t i = cursor_ + 1; i < last; ++i)
-    along += (path_point(p, i + 1) - path_point(p, i)).norm();
-  const double left = std::max((path_point(p, last) - q).norm(), along);
-  return std::sqrt(2.0 * plan_.max_decel * left);
 }
 
 ManoeuvreStep HeadlandManoeuvre::step(const core::Pose2& T_odom_base,

@@ -54,9 +54,6 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
       place_input_((config.validate(), config.place)),
       cover_(config.stack.obstacles.cover),
       canopy_(config.stack.obstacles.canopy) {
-  // The manoeuvres brake as the limiter lets the commands brake (issue 11: at 2 m/s a headland
-  // leg ended 2 m past its end before the rotation after it).
-  config_.robot.turn.max_decel = config_.limits.max_accel;
   const StackMode mode = config_.stack.mode;
   core::check(parts_.pipeline != nullptr, "pipeline", "missing");
   core::check(mode == StackMode::detect || parts_.tracker != nullptr, "tracker", "missing");

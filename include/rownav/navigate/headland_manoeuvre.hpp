@@ -127,11 +127,6 @@ class HeadlandManoeuvre {
  private:
   void reanchor(const std::vector<Eigen::Vector2d>& ends_turn, const Eigen::Vector2d& robot);
   core::Twist2 follow(const TurnPrimitive& p, const core::Pose2& T_turn_base);
-  /// Point i of p's path, its anchored points moved to the re-anchored target.
-  Eigen::Vector2d path_point(const TurnPrimitive& p, std::size_t i) const;
-  /// [m/s] the speed from which the robot can still stop at the end of p when a rotation in
-  /// place follows it (plan_.max_decel); turn_speed otherwise.
-  double stopping_speed(const TurnPrimitive& p, const Eigen::Vector2d& q) const;
 
   struct Pole {
     double y = 0.0;  // turn frame

@@ -21,9 +21,6 @@ enum class TurnKind : std::uint8_t { in_place, u_turn, bulb };
 struct TurnAbility {
   bool can_turn_in_place = true;
   double min_turn_radius = 0.0;  ///< [m]
-  /// [m/s^2] the braking the commands are limited to (NavStack sets it from its velocity
-  /// limits' max_accel); 0: unknown, a leg is driven at turn_speed up to its end
-  double max_decel = 0.0;
 };
 
 /// The chosen turn and its radius.
@@ -33,9 +30,6 @@ struct TurnPlan {
   /// The robot can rotate in place; when not (car-like), it backs up along the pursuit arc when
   /// the look-ahead point falls behind it (a three-point correction) instead of rotating.
   bool can_rotate = true;
-  /// [m/s^2] TurnAbility::max_decel: a leg that ends in an in-place rotation slows down so the
-  /// robot can stop at its end (0: no slow-down)
-  double max_decel = 0.0;
 };
 
 /// Turn for `shift` corridors across at `spacing` [m]: in_place for robots that can (automatic,
