@@ -89,7 +89,8 @@ class Simulator {
   /// next steps, at `speed` [m/s] along the straight line and `yaw_rate` [rad/s], whatever it is
   /// commanded, without its wheels turning: a person pushing it, a tow, a hand (issue 15: the ROS
   /// sim node's ~carry). The LiDAR sees the move, the encoders and the IMU do not. A call
-  /// replaces a carry still under way; speed or yaw_rate <= 0 (or not finite) moves it at once.
+  /// replaces a carry still under way. The slower of the line and the turn sets the pace; a speed
+  /// (yaw_rate) <= 0 or not finite sets none for the line (the turn): with neither, at once.
   void carry(const core::Pose2& delta_base, double speed, double yaw_rate);
   /// A carry is still under way.
   bool carrying() const { return carry_.has_value(); }
