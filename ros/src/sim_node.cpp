@@ -162,7 +162,8 @@ void SimNode::on_carry(const geometry_msgs::Pose2D::ConstPtr& msg) {
   }
   ROS_INFO("rownav_sim_node: carrying the robot by (%.2f m, %.2f m, %.1f deg)", msg->x, msg->y,
            msg->theta * 180.0 / M_PI);
-  carry_ = core::Pose2(msg->x, msg->y, msg->theta);
+  // On the main thread (pnh_'s queue, spun between the steps): the next step starts the carry.
+  sim_->carry(core::Pose2(msg->x, msg->y, msg->theta), config_.carry_speed, config_.carry_yaw_rate);
 }
 
 void SimNode::sent_cloud(const ros::Time& stamp) {
@@ -218,8 +219,6 @@ int SimNode::run() {
       const std::lock_guard<std::mutex> lock(mutex_);
       cmd = cmd_;
     }
-    if (carry_) sim_->carry(*carry_, config_.carry_speed, config_.carry_yaw_rate);
-    carry_.reset();
     sim_->step(cmd, *sink_);
     ros::spinOnce();
     if (state_ == "done" || state_ == "safe_stop") break;

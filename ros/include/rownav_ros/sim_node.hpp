@@ -24,7 +24,6 @@
 #include <vector>
 
 #include "rownav/core/config_fields.hpp"
-#include "rownav/core/pose2.hpp"
 #include "rownav/core/sensor_samples.hpp"
 #include "rownav/core/twist.hpp"
 #include "rownav/localize/localizer.hpp"
@@ -184,7 +183,6 @@ class SimNode {
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   core::Twist2 cmd_;
-  std::optional<core::Pose2> carry_;  ///< a ~carry not yet handed to the simulator
   std::string state_;
   SimScore score_;
   friend class Sink;
