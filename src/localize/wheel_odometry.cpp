@@ -4,13 +4,17 @@
 #include <numbers>
 
 namespace rownav::localize {
+namespace {
+// The range of alpha a drive train can have: validate() and set_alpha() agree on it.
+constexpr double kMinAlpha = 0.1, kMaxAlpha = 2.0;
+}  // namespace
 
 void WheelOdometryConfig::validate() const {
   core::check_positive(track_width, "track_width");
   core::check_positive(wheel_radius, "wheel_radius");
   core::check_positive(ticks_per_rev, "ticks_per_rev");
   core::check_positive(x_icr, "x_icr");
-  core::check_range(alpha, 0.1, 2.0, "alpha");
+  core::check_range(alpha, kMinAlpha, kMaxAlpha, "alpha");
   core::check_positive(wheelbase, "wheelbase");
   core::check_positive(max_plausible_speed, "max_plausible_speed");
 }
@@ -30,6 +34,10 @@ core::Pose2 twist_increment(const core::Twist2& t, double dt) {
 
 WheelOdometry::WheelOdometry(const WheelOdometryConfig& config) : config_(config) {
   config_.validate();
+}
+
+void WheelOdometry::set_alpha(double alpha) {
+  if (alpha >= kMinAlpha && alpha <= kMaxAlpha) config_.alpha = alpha;
 }
 
 core::Twist2 WheelOdometry::twist_from_wheels(double vl, double vr, double steering) const {

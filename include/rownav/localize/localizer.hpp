@@ -88,6 +88,13 @@ class Localizer {
   std::optional<core::Pose2> T_odom_base(double stamp) const;
   /// Estimate at `stamp` (pose interpolated, covariance / twist of the earlier neighbour).
   std::optional<PoseEstimate> estimate_at(double stamp) const;
+  /// [-] the odometry's current correction factor alpha (Bertoglio 2023 eq. (2)).
+  double odometry_alpha() const { return odometry_.config().alpha; }
+  /// Replaces alpha from the next encoder sample on (an online estimate); poses already
+  /// integrated stay as they are.
+  void set_odometry_alpha(double alpha) { odometry_.set_alpha(alpha); }
+  /// GNSS fixes are being fused (the pose's distance is no longer the odometry's alone).
+  bool gnss_aligned() const { return T_odom_enu_.has_value(); }
   /// Restarts at a pose: clears history and GNSS alignment, keeps the gyro bias estimate.
   void reset(const core::Pose2& T_odom_base = {});
   const LocalizerConfig& config() const { return config_; }

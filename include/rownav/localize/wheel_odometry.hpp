@@ -69,6 +69,9 @@ class WheelOdometry {
   /// Samples rejected as implausible jumps (or non-finite).
   int rejected_jumps() const { return rejected_jumps_; }
   const WheelOdometryConfig& config() const { return config_; }
+  /// Replaces the correction factor alpha (an online estimate); ignored outside the range
+  /// validate() allows.
+  void set_alpha(double alpha);
 
  private:
   WheelOdometryConfig config_;
