@@ -1,18 +1,18 @@
 // The closed loop: simulator samples -> navigate::NavStack -> command -> simulator.
 #include "rownav/io/closed_loop_runner.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
-#include <array>
 #include <deque>
 #include <optional>
 #include <stdexcept>
 
 #include "rownav/io/csv.hpp"
 #include "rownav/io/detector_registry.hpp"
+#include "rownav/io/nav_stack_setup.hpp"
 #include "rownav/io/recording.hpp"
 #include "rownav/io/recording_replay.hpp"
-#include "rownav/io/nav_stack_setup.hpp"
 #include "rownav/sim/field_truth.hpp"
 #include "rownav/vision/camera_labeller.hpp"
 #include "rownav/vision/excess_green_detector.hpp"
@@ -42,7 +42,9 @@ class InputLog {
   explicit InputLog(const std::filesystem::path& dir) : writer_(dir, YAML::Node()) {}
   void cloud(const core::PointCloud& c) { writer_.write_cloud(c), row("cloud", n_[0]++); }
   void scan(const core::Scan2D& s) { writer_.write_scan(s), row("scan", n_[1]++); }
-  void encoders(const core::WheelEncoderSample& s) { writer_.write_encoders(s), row("encoders", n_[2]++); }
+  void encoders(const core::WheelEncoderSample& s) {
+    writer_.write_encoders(s), row("encoders", n_[2]++);
+  }
   void imu(const core::ImuSample& s) { writer_.write_imu(s), row("imu", n_[3]++); }
   void gnss(const core::GnssFix& s) { writer_.write_gnss(s), row("gnss", n_[4]++); }
   void command(const navigate::NavCommand& c) {
@@ -74,7 +76,10 @@ class RunnerSink : public sim::SimSink {
  public:
   RunnerSink(navigate::NavStack& stack, const sim::Simulator& sim, const ClosedLoopSetup& setup,
              RunResult& result, InputLog* log)
-      : stack_(stack), sim_(sim), result_(result), log_(log),
+      : stack_(stack),
+        sim_(sim),
+        result_(result),
+        log_(log),
         T_base_lidar_(setup.sensors.lidar.T_base_lidar().cast<float>()) {
     const sim::Field& field = *setup.field;
     if (setup.nav.place.enabled && setup.camera_labels)
@@ -144,7 +149,8 @@ class RunnerSink : public sim::SimSink {
     std::vector<map::PointLabel> out;
     if (!labeller_ && !camera_) return out;
     points_base_.clear();
-    for (const auto& p : c.points) points_base_.push_back(T_base_lidar_ * Eigen::Vector3f(p.x, p.y, p.z));
+    for (const auto& p : c.points)
+      points_base_.push_back(T_base_lidar_ * Eigen::Vector3f(p.x, p.y, p.z));
     if (camera_) {
       if (camera_->sweeps++ % camera_->every == 0)  // a new image: the first sweep, then every n
         camera_->labeller.set_image(  // the image at the robot's pose when the sweep arrives
@@ -260,7 +266,8 @@ core::Pose2 perturbed_start(const core::Pose2& start, double offset, double yaw)
 std::unique_ptr<navigate::NavStack> make_nav_stack(const ClosedLoopSetup& setup,
                                                    const std::vector<int>& order) {
   navigate::NavStackConfig nav = setup.nav;
-  nav_stack_robot(nav, setup.robot, setup.sensors.encoders.ticks_per_rev, setup.sensors.lidar.rate_hz);
+  nav_stack_robot(nav, setup.robot, setup.sensors.encoders.ticks_per_rev,
+                  setup.sensors.lidar.rate_hz);
   navigate::NavStackParts parts;
   parts.pipeline = std::make_unique<detect::DetectionPipeline>(
       make_pipeline(setup.detector, setup.detect_config, setup.sensors.lidar.T_base_lidar()));
@@ -277,10 +284,9 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   const sim::FieldTruth truth(*setup.field);
   RunResult result;
   result.order = navigate::resolve_order(setup.mission, truth.corridor_count(setup.mission.block));
-  const core::Pose2 start =
-      perturbed_start(mission_start(truth, result.order, setup.mission.block,
-                                    setup.mission.first_turn, setup.lead_in),
-                      setup.start_offset, setup.start_yaw);
+  const core::Pose2 start = perturbed_start(mission_start(truth, result.order, setup.mission.block,
+                                                          setup.mission.first_turn, setup.lead_in),
+                                            setup.start_offset, setup.start_yaw);
   result.T_world_odom = start;
   const auto stack_ptr = make_nav_stack(setup, result.order);
   navigate::NavStack& stack = *stack_ptr;
@@ -329,6 +335,8 @@ RunResult run_closed_loop(const ClosedLoopSetup& setup) {
   if (log) log->commit();
   result.final_state = stack.navigator().state();
   result.turns = stack.navigator().turns();
+  result.odometry_alpha = stack.localizer().odometry_alpha();
+  result.odometry_scale_samples = stack.odometry_scale().accepted();
   result.sim_time = sim.time();
   result.wall_time = std::chrono::duration<double>(Clock::now() - wall0).count();
   return result;

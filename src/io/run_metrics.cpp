@@ -247,6 +247,8 @@ RunSummary summarize(const RunResult& run, const sim::FieldTruth& truth, int blo
   fill_row_ends(run, truth, block, r);
   r.place = place_metrics(run, truth, block);
   r.sim_time = run.sim_time, r.wall_time = run.wall_time;
+  r.odometry_alpha = run.odometry_alpha;
+  r.odometry_scale_samples = run.odometry_scale_samples;
   // Every planned corridor driven end to end in the planned order (the navigator's own count,
   // run.served, could include a corridor left early on a false row end).
   r.success = r.mission_done && !r.collision && !r.safe_stop && r.wrong_entries == 0 &&

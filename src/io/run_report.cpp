@@ -225,6 +225,8 @@ std::string summary_json(const RunSummary& s, const RunNames& n) {
   j["tracking_lost_in_row"] = s.tracking_lost_in_row;
   j["sim_time"] = s.sim_time, j["wall_time"] = s.wall_time, j["distance"] = s.distance;
   j["speed_max"] = s.speed_max;
+  j["odometry_alpha"] = s.odometry_alpha;
+  j["odometry_scale_samples"] = s.odometry_scale_samples;
   j["crushed"] = json::array();
   for (const auto& c : s.crushes)
     j["crushed"].push_back({{"stamp", c.stamp},

@@ -50,6 +50,7 @@ NavStack::NavStack(const NavStackConfig& config, NavStackParts parts, std::vecto
       order_(std::move(order)),
       first_turn_(first_turn),
       localizer_(config.localizer),
+      scale_(config.stack.odometry_scale),
       external_(config.stack.odometry_history, config.stack.max_extrapolation),
       place_input_((config.validate(), config.place)),
       cover_(config.stack.obstacles.cover),
@@ -217,6 +218,13 @@ FrameReport NavStack::process_frame(Pending& frame, const std::optional<core::Po
   const NavState state = navigator_->state();
   parts_.tracker->set_manoeuvring(state == NavState::turning || state == NavState::headland);
   r.tracking = parts_.tracker->update(r.observation, *pose);
+  // Issue 11: the frames of straight stretches measure the odometry's alpha (Bertoglio eq. (2)).
+  if (config_.stack.odometry_scale.enabled && config_.stack.odometry == OdometryInput::wheels_imu &&
+      !localizer_.gnss_aligned()) {
+    const auto alpha =
+        scale_.add_frame(parts_.pipeline->last_points(), *pose, localizer_.odometry_alpha());
+    if (alpha) localizer_.set_odometry_alpha(*alpha);
+  }
   if (place_) estimate_place(frame, r, *pose);
   if (config_.stack.mode == StackMode::track) return r;
   const auto& p = *parts_.pipeline;

@@ -17,9 +17,9 @@
 #include "rownav/navigate/nav_stack.hpp"
 #include "rownav/navigate/navigator.hpp"
 #include "rownav/sim/field.hpp"
+#include "rownav/sim/pinhole_camera.hpp"
 #include "rownav/sim/robot.hpp"
 #include "rownav/sim/simulator.hpp"
-#include "rownav/sim/pinhole_camera.hpp"
 #include "rownav/sim/truth_labeller.hpp"
 #include "rownav/track/row_tracker.hpp"
 
@@ -41,7 +41,7 @@ struct ClosedLoopSetup {
   std::filesystem::path detect_config;  ///< empty: detector defaults
   TrackerFactory make_tracker;
   ControllerFactory make_controller;
-  double time_limit = 1200.0;     ///< [s] simulated; the run stops with reason `timeout`
+  double time_limit = 1200.0;  ///< [s] simulated; the run stops with reason `timeout`
   /// When set, every input handed to NavStack is also written, in order, to this new recording
   /// directory (samples + inputs.csv with each command the stack answered): its replay through
   /// io::replay_input_log must give the same commands.
@@ -49,7 +49,7 @@ struct ClosedLoopSetup {
   /// [s] simulated on with a zero command after a safe stop, so that the robot comes to rest
   /// and the samples show where (the fault runs of issue 13: the clearance to a person)
   double settle = 0.0;
-  double lead_in = 1.5;           ///< [m] start this far before the first corridor's entrance
+  double lead_in = 1.5;  ///< [m] start this far before the first corridor's entrance
   /// [m] start this far left (+) or right (-) of the first corridor's centre line (brief: the
   /// robot off-centre; an operator rarely puts it on the centre line)
   double start_offset = 0.0;
@@ -102,11 +102,11 @@ struct FrameSample {
 /// A plant the footprint ran over: where, when and in which navigator state (issue 11: "find
 /// where the plants are crushed").
 struct CrushRecord {
-  double stamp = 0.0;           ///< [s] ground-truth sample that first saw it crushed
-  Eigen::Vector2d position;     ///< [m] plant centre, world frame
-  double radius = 0.0;          ///< [m] its crushable radius (stem, head)
+  double stamp = 0.0;        ///< [s] ground-truth sample that first saw it crushed
+  Eigen::Vector2d position;  ///< [m] plant centre, world frame
+  double radius = 0.0;       ///< [m] its crushable radius (stem, head)
   navigate::NavState state = navigate::NavState::in_row;
-  Eigen::Vector2d robot_xy;     ///< [m] true base position then
+  Eigen::Vector2d robot_xy;  ///< [m] true base position then
 };
 
 /// Per LiDAR frame with the map stage on: its validated place against the truth.
@@ -119,7 +119,7 @@ struct PlaceSample {
 /// A key location the map stage validated, mapped into the world by the robot's true pose at
 /// validation (as the row ends: the error is that of the estimate relative to the robot).
 struct KeyLocationSample {
-  navigate::PlaceKey key;  ///< odom frame
+  navigate::PlaceKey key;                           ///< odom frame
   Eigen::Vector2d world = Eigen::Vector2d::Zero();  ///< [m]
 };
 
@@ -129,8 +129,9 @@ struct RunResult {
   std::vector<RunSample> samples;
   std::vector<CrushRecord> crushes;  ///< every plant crushed, in order
   std::vector<FrameSample> frames;
-  std::vector<navigate::NavEvent> events;       ///< odom-frame points
-  std::vector<Eigen::Vector2d> row_ends_world;  ///< estimated row ends, mapped by the true pose when estimated
+  std::vector<navigate::NavEvent> events;  ///< odom-frame points
+  std::vector<Eigen::Vector2d>
+      row_ends_world;  ///< estimated row ends, mapped by the true pose when estimated
   /// One turn frame's row-end point (NavCommand::row_end_points), mapped by the true pose.
   struct TurnRowEnd {
     double stamp = 0.0;  ///< [s] of the command that reported it
@@ -141,10 +142,12 @@ struct RunResult {
   navigate::StopReason stop_reason = navigate::StopReason::none;
   int turns = 0;
   int served = 0;
-  core::Pose2 T_world_odom;  ///< truth of the odom frame (start pose)
+  double odometry_alpha = 1.0;     ///< the odometry's alpha at the end (estimated online, or set)
+  int odometry_scale_samples = 0;  ///< stretches that measured it (StackConfig::odometry_scale)
+  core::Pose2 T_world_odom;        ///< truth of the odom frame (start pose)
   double sim_time = 0.0, wall_time = 0.0;
   std::vector<std::pair<int, int>> entries;  ///< (planned, true corridor) at each entry
-  std::vector<PlaceSample> places;            ///< empty: map stage off
+  std::vector<PlaceSample> places;           ///< empty: map stage off
   std::vector<KeyLocationSample> key_locations;
 };
 

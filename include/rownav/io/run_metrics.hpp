@@ -53,6 +53,10 @@ struct RunSummary {
   double sim_time = 0.0, wall_time = 0.0, distance = 0.0;
   /// [m/s] the highest true forward speed of the run (003 sec. III: up to 2 m/s in simulation)
   double speed_max = 0.0;
+  /// [-] the odometry's alpha at the end of the run (Bertoglio 2023 eq. (2)), and how many
+  /// straight stretches measured it (0: not estimated, the robot file's or the nominal one)
+  double odometry_alpha = 1.0;
+  int odometry_scale_samples = 0;
   std::vector<CorridorMetrics> per_corridor;
   std::vector<CrushRecord> crushes;  ///< where each crushed plant was (summary.json `crushed`)
   PlaceMetrics place;                ///< the map stage (issue 12); empty when it was off

@@ -161,6 +161,8 @@ class NavStack {
   const Navigator& navigator() const { return *navigator_; }
   const detect::DetectionPipeline& pipeline() const { return *parts_.pipeline; }
   const localize::Localizer& localizer() const { return localizer_; }
+  /// The online estimate of the odometry's alpha (StackConfig::odometry_scale).
+  const localize::OdometryScaleEstimator& odometry_scale() const { return scale_; }
   const NavStackStats& stats() const { return stats_; }
   const NavStackConfig& config() const { return config_; }
   /// The map stage (null when PlaceConfig::enabled is false).
@@ -195,6 +197,7 @@ class NavStack {
   std::unique_ptr<Navigator> navigator_;
   std::unique_ptr<map::PlaceEstimator> place_;  // null: map stage disabled
   localize::Localizer localizer_;
+  localize::OdometryScaleEstimator scale_;
   localize::PoseHistory external_;
   PlaceInput place_input_;       // after the members built before validation (config_.validate())
   GroundCoverEstimator cover_;   // validated config

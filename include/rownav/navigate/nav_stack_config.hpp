@@ -18,6 +18,7 @@
 #include "rownav/control/velocity_limits.hpp"
 #include "rownav/core/config_fields.hpp"
 #include "rownav/localize/localizer.hpp"
+#include "rownav/localize/odometry_scale_estimator.hpp"
 #include "rownav/navigate/end_of_row.hpp"
 #include "rownav/navigate/navigator.hpp"
 #include "rownav/navigate/obstacle_points.hpp"
@@ -139,6 +140,9 @@ struct StackConfig {
   /// height to tell them from a post (Malavazi 2018's Oz navigation has no obstacle stop; use a
   /// 3D sensor, whose obstacles go by height, where people or posts can be in the corridor)
   bool planar_obstacles = true;
+  /// The wheel odometry's alpha measured online from the LiDAR frames of straight stretches
+  /// (Bertoglio 2023 eq. (2); issue 11). Only with odometry = wheels_imu and without GNSS.
+  localize::OdometryScaleConfig odometry_scale;
 
   template <class S, class V>
   static void fields(S& s, V& v) {
@@ -158,6 +162,7 @@ struct StackConfig {
     v("watchdog", s.watchdog);
     v("obstacles", s.obstacles);
     v("planar_obstacles", s.planar_obstacles);
+    v("odometry_scale", s.odometry_scale);
   }
   void validate() const {
     core::check_range(max_level_tilt_deg, 0.0, 90.0, "max_level_tilt_deg");
@@ -171,6 +176,7 @@ struct StackConfig {
     core::validate_nested(front, "front");
     core::validate_nested(watchdog, "watchdog");
     core::validate_nested(obstacles, "obstacles");
+    core::validate_nested(odometry_scale, "odometry_scale");
   }
 };
 
