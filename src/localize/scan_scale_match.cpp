@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace rownav::localize {
@@ -14,6 +15,7 @@ void ScanScaleMatchConfig::validate() const {
   core::check_range(min_overlap, 0.0, 1.0, "min_overlap");
   core::check_positive(min_points, "min_points");
   core::check_range(ambiguity, 0.0, 1.0, "ambiguity");
+  core::check_positive(max_range, "max_range");
 }
 
 namespace {
@@ -144,29 +146,34 @@ ScanScaleMatch match_scan_scale(const std::vector<Eigen::Vector2f>& first,
                                 const core::Pose2& T_first_second,
                                 const ScanScaleMatchConfig& cfg) {
   ScanScaleMatch m;
+  const auto usable = [&](const Eigen::Vector2f& p) {
+    return p.allFinite() && p.norm() <= cfg.max_range;
+  };
+  std::vector<Eigen::Vector2f> near_first;
+  near_first.reserve(first.size());
+  std::copy_if(first.begin(), first.end(), std::back_inserter(near_first), usable);
   std::vector<Eigen::Vector2d> rotated;
   rotated.reserve(second.size());
   const Eigen::Matrix2d R = T_first_second.rotation();
   for (const auto& q : second)
-    if (q.allFinite()) rotated.push_back(R * q.cast<double>());
-  const auto n_first =
-      std::count_if(first.begin(), first.end(), [](const auto& p) { return p.allFinite(); });
-  if (std::ssize(rotated) < cfg.min_points || n_first < cfg.min_points) return m;
+    if (usable(q)) rotated.push_back(R * q.cast<double>());
+  if (std::ssize(rotated) < cfg.min_points || std::ssize(near_first) < cfg.min_points) return m;
   const Eigen::Vector2d t = T_first_second.translation();
   // The coarse step moves the second frame by one field cell.
   const double step = cfg.resolution / t.norm();
+  if (!std::isfinite(step) || !R.allFinite() || cfg.max_scale_error / step < 2.0)
+    return m.status = ScaleMatchStatus::no_motion, m;
   const int n = static_cast<int>(cfg.max_scale_error / step);
-  if (!std::isfinite(step) || n < 2) return m.status = ScaleMatchStatus::no_motion, m;
   // Only points that stay inside the first frame's view for every s searched are scored: one
   // that leaves it is a miss for large s only, and the crop box's front edge then pulls s down
   // (monotonic costs on maize, alpha 2 % low in vineyards before this).
-  const View view(first, cfg.truncation);
+  const View view(near_first, cfg.truncation);
   std::erase_if(rotated, [&](const Eigen::Vector2d& q) {
     return !view.contains(q + (1.0 - cfg.max_scale_error) * t) ||
            !view.contains(q + (1.0 + cfg.max_scale_error) * t);
   });
   if (std::ssize(rotated) < cfg.min_points) return m.status = ScaleMatchStatus::no_overlap, m;
-  const DistanceField field(first, cfg.resolution, cfg.truncation);
+  const DistanceField field(near_first, cfg.resolution, cfg.truncation);
   const Scorer sc{field, rotated, t};
   const auto coarse_costs = profile(sc, 1.0, step, n);
   const std::size_t best = argmin(coarse_costs);

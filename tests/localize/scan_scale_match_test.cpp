@@ -97,13 +97,16 @@ TEST(ScanScaleMatch, AStretchTooShortOrTooSparseGivesNoScale) {
             ScaleMatchStatus::too_few_points);
 }
 
-TEST(ScanScaleMatch, NonFinitePointsAreSkipped) {
+TEST(ScanScaleMatch, NonFiniteAndFarPointsAreSkipped) {
   std::mt19937 rng(15);
   Pair p = drive(rng, RowKind::vines, 0.95);
   const auto clean = match_scan_scale(p.first, p.second, p.T_first_second_odometry, {});
   const float nan = std::nanf("");
   p.first.emplace_back(nan, 0.0f);
   p.second.emplace_back(std::numeric_limits<float>::infinity(), 1.0f);
+  // A return a kilometre away would otherwise stretch the distance field over it.
+  p.first.emplace_back(1000.0f, -1000.0f);
+  p.second.emplace_back(-1000.0f, 1000.0f);
   const auto dirty = match_scan_scale(p.first, p.second, p.T_first_second_odometry, {});
   EXPECT_EQ(dirty.status, clean.status);
   EXPECT_DOUBLE_EQ(dirty.scale, clean.scale);

@@ -35,6 +35,10 @@ struct ScanScaleMatchConfig {
   /// best s: less is two views that do not overlap
   double min_overlap = 0.5;
   int min_points = 30;  ///< [-] fewer points in either frame: no match
+  /// [m] points farther from the robot are not used: the distance field's size (and memory)
+  /// stays bounded whatever the sensor's reach (24 m square at most: 1.4 MB), and far returns
+  /// are too sparse to place (rownav)
+  double max_range = 12.0;
   /// [-] a second valley of the coarse cost within this share of the cost's range of the best
   /// one, behind a ridge higher than that share, makes the match ambiguous: plants or trunks
   /// repeating along the row closer than the odometry's error over the baseline (rownav)
@@ -49,6 +53,7 @@ struct ScanScaleMatchConfig {
     v("min_overlap", s.min_overlap);
     v("min_points", s.min_points);
     v("ambiguity", s.ambiguity);
+    v("max_range", s.max_range);
   }
   void validate() const;
 };
