@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace rownav::localize {
 
@@ -18,7 +20,10 @@ void OdometryScaleConfig::validate() const {
 
 namespace {
 
-double median(std::vector<double> v) {
+// The average of the two middle values for an even count: between 5 and 15 samples the count is
+// often even, and an alpha between two samples is the estimate, not one of them (core::median
+// returns the upper one; the alphas in BENCHMARK.md were measured with this one).
+double midpoint_median(std::vector<double> v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
   if (v.size() % 2 == 1) return *mid;
@@ -46,24 +51,24 @@ std::optional<double> OdometryScaleEstimator::add_frame(const std::vector<Eigen:
     return std::nullopt;
   }
   if (T_key_cur.translation().norm() < config_.baseline) return std::nullopt;
-  last_ = match_scan_scale(key_->points, points, T_key_cur, config_.match);
+  const ScanScaleMatch m = match_scan_scale(key_->points, points, T_key_cur, config_.match);
   ++matches_;
   key_ = Key{points, T_odom_base, alpha};
-  if (last_.status != ScaleMatchStatus::ok) return std::nullopt;
+  if (m.status != ScaleMatchStatus::ok) return std::nullopt;
   ++accepted_;
-  return take(alpha * last_.scale, alpha);
+  return take(alpha * m.scale, alpha);
 }
 
 std::optional<double> OdometryScaleEstimator::take(double sample, double alpha) {
   samples_.push_back(sample);
   while (std::ssize(samples_) > config_.window) samples_.pop_front();
   if (std::ssize(samples_) < config_.min_samples) return std::nullopt;
-  const std::vector<double> v(samples_.begin(), samples_.end());
-  const double m = median(v);
+  const double m = midpoint_median({samples_.begin(), samples_.end()});
   std::vector<double> dev;
-  dev.reserve(v.size());
-  for (double s : v) dev.push_back(std::abs(s - m));
-  if (median(dev) > config_.max_spread || std::abs(m - alpha) <= config_.min_change)
+  dev.reserve(samples_.size());
+  for (double s : samples_) dev.push_back(std::abs(s - m));
+  if (midpoint_median(std::move(dev)) > config_.max_spread ||
+      std::abs(m - alpha) <= config_.min_change)
     return std::nullopt;
   return m;
 }

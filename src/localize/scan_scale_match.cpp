@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <utility>
 
 namespace rownav::localize {
 
@@ -20,25 +21,36 @@ void ScanScaleMatchConfig::validate() const {
 
 namespace {
 
+// The first frame's (finite, near) points: bounding box and farthest range.
+struct Bounds {
+  Eigen::Vector2d lo, hi;
+  double range = 0.0;
+};
+
+Bounds bounds_of(const std::vector<Eigen::Vector2f>& points) {
+  Bounds b;
+  b.lo.setConstant(std::numeric_limits<double>::max());
+  b.hi = -b.lo;
+  for (const auto& p : points) {
+    b.lo = b.lo.cwiseMin(p.cast<double>());
+    b.hi = b.hi.cwiseMax(p.cast<double>());
+    b.range = std::max(b.range, static_cast<double>(p.norm()));
+  }
+  return b;
+}
+
 // Squared distance to the nearest first-frame point, truncated, on a grid over those points.
 class DistanceField {
  public:
-  DistanceField(const std::vector<Eigen::Vector2f>& points, double res, double trunc)
+  DistanceField(const std::vector<Eigen::Vector2f>& points, const Bounds& b, double res,
+                double trunc)
       : res_(res), max_(trunc * trunc) {
-    Eigen::Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
-    Eigen::Vector2d hi = -lo;
-    for (const auto& p : points) {
-      if (!p.allFinite()) continue;
-      lo = lo.cwiseMin(p.cast<double>());
-      hi = hi.cwiseMax(p.cast<double>());
-    }
-    origin_ = lo.array() - trunc;
-    nx_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2.0 * trunc) / res)) + 1;
-    ny_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2.0 * trunc) / res)) + 1;
+    origin_ = b.lo.array() - trunc;
+    nx_ = static_cast<int>(std::ceil((b.hi.x() - b.lo.x() + 2.0 * trunc) / res)) + 1;
+    ny_ = static_cast<int>(std::ceil((b.hi.y() - b.lo.y() + 2.0 * trunc) / res)) + 1;
     cells_.assign(static_cast<std::size_t>(nx_) * ny_, static_cast<float>(max_));
     const int r = static_cast<int>(std::ceil(trunc / res));
-    for (const auto& p : points)
-      if (p.allFinite()) stamp(p.cast<double>(), r);
+    for (const auto& p : points) stamp(p.cast<double>(), r);
   }
 
   // Truncated squared distance at q (outside the grid: the truncation).
@@ -73,19 +85,8 @@ class DistanceField {
 // truncation (a robot-fixed window: crop box and range ring).
 class View {
  public:
-  View(const std::vector<Eigen::Vector2f>& points, double margin) {
-    lo_.setConstant(std::numeric_limits<double>::max());
-    hi_ = -lo_;
-    for (const auto& p : points) {
-      if (!p.allFinite()) continue;
-      lo_ = lo_.cwiseMin(p.cast<double>());
-      hi_ = hi_.cwiseMax(p.cast<double>());
-      range_ = std::max(range_, static_cast<double>(p.norm()));
-    }
-    lo_.array() += margin;
-    hi_.array() -= margin;
-    range_ -= margin;
-  }
+  View(const Bounds& b, double margin)
+      : lo_(b.lo.array() + margin), hi_(b.hi.array() - margin), range_(b.range - margin) {}
   bool contains(const Eigen::Vector2d& q) const {
     return q.x() >= lo_.x() && q.y() >= lo_.y() && q.x() <= hi_.x() && q.y() <= hi_.y() &&
            q.norm() <= range_;
@@ -93,7 +94,7 @@ class View {
 
  private:
   Eigen::Vector2d lo_, hi_;
-  double range_ = 0.0;
+  double range_;
 };
 
 struct Scorer {
@@ -139,6 +140,31 @@ bool ambiguous(const std::vector<double>& c, std::size_t best, double share) {
   return false;
 }
 
+// The second frame's near points, rotated into the first, that stay inside the first frame's view
+// for every s searched. One that leaves it is a miss for large s only, and the crop box's front
+// edge then pulls s down (monotonic costs on maize, alpha 2 % low in vineyards before this).
+void keep_in_view(std::vector<Eigen::Vector2d>& rotated, const View& view, const Eigen::Vector2d& t,
+                  double max_scale_error) {
+  std::erase_if(rotated, [&](const Eigen::Vector2d& q) {
+    return !view.contains(q + (1.0 - max_scale_error) * t) ||
+           !view.contains(q + (1.0 + max_scale_error) * t);
+  });
+}
+
+// Quarter steps around the coarse minimum, then a parabola through the best three; returns the
+// scale and the cost at the best quarter step.
+std::pair<double, double> refine(const Scorer& sc, double coarse, double step) {
+  const double fine = 0.25 * step;
+  const auto c = profile(sc, coarse, fine, 4);
+  const std::size_t j = argmin(c);
+  double scale = coarse + (static_cast<int>(j) - 4) * fine;
+  const double cm = j > 0 ? c[j - 1] : sc.cost(scale - fine);
+  const double cp = j + 1 < c.size() ? c[j + 1] : sc.cost(scale + fine);
+  const double curvature = cm + cp - 2.0 * c[j];
+  if (curvature > 0.0) scale += 0.5 * fine * (cm - cp) / curvature;
+  return {scale, c[j]};
+}
+
 }  // namespace
 
 ScanScaleMatch match_scan_scale(const std::vector<Eigen::Vector2f>& first,
@@ -164,16 +190,10 @@ ScanScaleMatch match_scan_scale(const std::vector<Eigen::Vector2f>& first,
   if (!std::isfinite(step) || !R.allFinite() || cfg.max_scale_error / step < 2.0)
     return m.status = ScaleMatchStatus::no_motion, m;
   const int n = static_cast<int>(cfg.max_scale_error / step);
-  // Only points that stay inside the first frame's view for every s searched are scored: one
-  // that leaves it is a miss for large s only, and the crop box's front edge then pulls s down
-  // (monotonic costs on maize, alpha 2 % low in vineyards before this).
-  const View view(near_first, cfg.truncation);
-  std::erase_if(rotated, [&](const Eigen::Vector2d& q) {
-    return !view.contains(q + (1.0 - cfg.max_scale_error) * t) ||
-           !view.contains(q + (1.0 + cfg.max_scale_error) * t);
-  });
+  const Bounds bounds = bounds_of(near_first);
+  keep_in_view(rotated, View(bounds, cfg.truncation), t, cfg.max_scale_error);
   if (std::ssize(rotated) < cfg.min_points) return m.status = ScaleMatchStatus::no_overlap, m;
-  const DistanceField field(near_first, cfg.resolution, cfg.truncation);
+  const DistanceField field(near_first, bounds, cfg.resolution, cfg.truncation);
   const Scorer sc{field, rotated, t};
   const auto coarse_costs = profile(sc, 1.0, step, n);
   const std::size_t best = argmin(coarse_costs);
@@ -181,15 +201,8 @@ ScanScaleMatch match_scan_scale(const std::vector<Eigen::Vector2f>& first,
   if (std::abs(k) == n) return m.status = ScaleMatchStatus::at_bound, m;
   if (ambiguous(coarse_costs, best, cfg.ambiguity))
     return m.status = ScaleMatchStatus::ambiguous, m;
-  // Fine: quarter steps around the coarse minimum, then a parabola through the best three.
-  const double coarse = 1.0 + k * step, fine = 0.25 * step;
-  const auto fine_costs = profile(sc, coarse, fine, 4);
-  const std::size_t j = argmin(fine_costs);
-  const double c0 = fine_costs[j];
-  m.scale = coarse + (static_cast<int>(j) - 4) * fine;
-  const double cm = sc.cost(m.scale - fine), cp = sc.cost(m.scale + fine);
-  const double curvature = cm + cp - 2.0 * c0;
-  if (curvature > 0.0) m.scale += 0.5 * fine * (cm - cp) / curvature;
+  const auto [scale, c0] = refine(sc, 1.0 + k * step, step);
+  m.scale = scale;
   // Contrast: how much worse one coarse step either side is (a flat valley: a solid hedge).
   const double rise = std::min(sc.cost(m.scale - step), sc.cost(m.scale + step)) - c0;
   m.contrast = rise / std::max(c0, cfg.resolution * cfg.resolution);

@@ -62,15 +62,9 @@ class OdometryScaleEstimator {
   /// the alpha the odometry should take from now on, when the samples say so.
   std::optional<double> add_frame(const std::vector<Eigen::Vector2f>& points_base,
                                   const core::Pose2& T_odom_base, double alpha);
-  /// Forgets the stretch's first frame (the odometry pose jumped); keeps the samples.
-  void restart_stretch() { key_.reset(); }
-  /// Samples in the window.
-  int samples() const { return static_cast<int>(samples_.size()); }
   /// Frames compared so far, and how many gave a sample.
   int matches() const { return matches_; }
   int accepted() const { return accepted_; }
-  /// The last comparison.
-  const ScanScaleMatch& last_match() const { return last_; }
   const OdometryScaleConfig& config() const { return config_; }
 
  private:
@@ -84,7 +78,6 @@ class OdometryScaleEstimator {
   OdometryScaleConfig config_;
   std::optional<Key> key_;
   std::deque<double> samples_;
-  ScanScaleMatch last_;
   int matches_ = 0, accepted_ = 0;
 };
 
