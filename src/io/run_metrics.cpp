@@ -155,16 +155,20 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> true_row_ends(const sim
   return out;
 }
 
-/// The nearest of `ends` to `p`: its distance, and p's offset along the row (+ past the end).
-std::pair<double, double> nearest_end(
-    const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& ends,
-    const Eigen::Vector2d& p) {
-  double best = 1e300, best_along = 0.0;
+/// The nearest of `ends` to `p`, with p's offset along the row (+ past the end) and beside it.
+RowEndRecord nearest_end(const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& ends,
+                         const Eigen::Vector2d& p) {
+  RowEndRecord best;
+  best.estimate = p;
+  best.error = 1e300;
   for (const auto& [end, out] : ends) {
     const double d = (end - p).norm();
-    if (d < best) best = d, best_along = (p - end).dot(out);
+    if (d >= best.error) continue;
+    const Eigen::Vector2d q = p - end;
+    best.truth = end, best.error = d;
+    best.along = q.dot(out), best.across = out.x() * q.y() - out.y() * q.x();
   }
-  return {best, best_along};
+  return best;
 }
 
 /// Each estimated row end against the nearest true one of the block: the distance, and the
@@ -174,9 +178,10 @@ void fill_row_ends(const RunResult& run, const sim::FieldTruth& truth, int block
   const auto truth_ends = true_row_ends(truth, block);
   Stats ends, along, turn;
   for (const auto& p : run.row_ends_world) {
-    const auto [d, a] = nearest_end(truth_ends, p);
-    ends.add(d);
-    along.add(a);
+    const RowEndRecord e = nearest_end(truth_ends, p);
+    ends.add(e.error);
+    along.add(e.along);
+    r.row_ends.push_back(e);
   }
   r.row_end_error_mean = ends.mean(), r.row_end_error_max = ends.hi();
   r.row_end_along_mean = along.mean();
@@ -198,7 +203,7 @@ void fill_row_ends(const RunResult& run, const sim::FieldTruth& truth, int block
       if (best <= 0.5 * gap) turn.add(best);
     }
     for (std::size_t k = i; k < j; ++k)
-      r.turn_row_end_spurious += nearest_end(truth_ends, pts[k].world).first > 0.5 * gap;
+      r.turn_row_end_spurious += nearest_end(truth_ends, pts[k].world).error > 0.5 * gap;
     i = j;
   }
   r.turn_row_end_points = turn.n;

@@ -1,5 +1,6 @@
 // Run report: summary.json, report.html (inline SVGs), top_view.svg / .png, lateral_error.png,
-// speed.png, trajectory.csv, row_end_points.csv (the turns' row-end points, when there were turns).
+// speed.png, trajectory.csv, row_ends.csv (each estimated row end against the true one),
+// row_end_points.csv (the turns' row-end points, when there were turns).
 #include "rownav/io/run_report.hpp"
 
 #include <cmath>
@@ -180,6 +181,17 @@ std::string trajectory_csv(const RunResult& run) {
   return c.str();
 }
 
+/// Each row end the stack estimated against the nearest true one (world frame, metres).
+std::string row_ends_csv(const RunSummary& s) {
+  std::ostringstream c;
+  c.precision(9);
+  c << "x,y,true_x,true_y,error,along,across\n";
+  for (const auto& e : s.row_ends)
+    c << e.estimate.x() << "," << e.estimate.y() << "," << e.truth.x() << "," << e.truth.y() << ","
+      << e.error << "," << e.along << "," << e.across << "\n";
+  return c.str();
+}
+
 }  // namespace
 
 std::string summary_json(const RunSummary& s, const RunNames& n) {
@@ -277,6 +289,7 @@ void write_run_report(const fs::path& partial, const RunResult& run, const RunSu
   lateral.save(partial / "lateral_error.png");
   speed.save(partial / "speed.png");
   write_text(partial / "trajectory.csv", trajectory_csv(run));
+  if (!summary.row_ends.empty()) write_text(partial / "row_ends.csv", row_ends_csv(summary));
   if (!run.turn_row_ends_world.empty()) {  // 003 Table II's raw data: every turn frame's ends
     std::ostringstream c;
     c.precision(9);

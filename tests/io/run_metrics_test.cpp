@@ -89,6 +89,16 @@ TEST(RunMetrics, RowEndsPastTheLastPlantAreAPositiveOffsetAlongTheRowAndShortOne
   ASSERT_TRUE(s.row_end_along_mean.has_value());
   EXPECT_NEAR(*s.row_end_along_mean, 0.5 * (0.3 - 0.1), 1e-9);
   EXPECT_NEAR(*s.row_end_error_max, std::hypot(0.3, 0.1), 1e-9);
+  // Each end on its own (row_ends.csv): matched to its true end, split along and across the row
+  // (+ left looking out of the row: at the far end that is the row's own left).
+  ASSERT_EQ(s.row_ends.size(), 2u);
+  EXPECT_LT((s.row_ends[0].truth - row.end()).norm(), 1e-9);
+  EXPECT_NEAR(s.row_ends[0].along, 0.3, 1e-9);
+  EXPECT_NEAR(s.row_ends[0].across, 0.1, 1e-9);
+  EXPECT_LT((s.row_ends[1].truth - row.start()).norm(), 1e-9);
+  EXPECT_NEAR(s.row_ends[1].along, -0.1, 1e-9);
+  EXPECT_NEAR(s.row_ends[1].across, 0.0, 1e-9);
+  EXPECT_NEAR(s.row_ends[1].error, 0.1, 1e-9);
   run.row_ends_world = {row.end() - 0.2 * along};
   EXPECT_NEAR(*summarize(run, truth).row_end_along_mean, -0.2, 1e-9);
 }

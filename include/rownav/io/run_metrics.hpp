@@ -24,6 +24,16 @@ struct CorridorMetrics {
   double length = 0.0;             ///< [m] centre-line length covered
 };
 
+/// One row end the stack estimated, against the nearest true row end of the block (the row's
+/// last plant or end post): row_ends.csv.
+struct RowEndRecord {
+  Eigen::Vector2d estimate = Eigen::Vector2d::Zero();  ///< [m] world frame
+  Eigen::Vector2d truth = Eigen::Vector2d::Zero();     ///< [m] world frame
+  double error = 0.0;                                  ///< [m] distance between the two
+  double along = 0.0;   ///< [m] + past the true end (into the headland), - short of it
+  double across = 0.0;  ///< [m] beside the row's line, + to the left looking out of the row
+};
+
 /// Summary of a run; std::nullopt where a value cannot be measured (null in JSON).
 struct RunSummary {
   bool success = false, mission_done = false, safe_stop = false, collision = false;
@@ -39,6 +49,7 @@ struct RunSummary {
   /// [m] mean signed offset of the estimated row ends along their rows: + past the true end
   /// (into the headland), - short of it (the true end = the row's last plant or end post)
   std::optional<double> row_end_along_mean;
+  std::vector<RowEndRecord> row_ends;  ///< each estimated row end (row_ends.csv, not in JSON)
   /// [m] 003 Table II: in each turn frame, each true row end (end post, else last plant)
   /// against the nearest of the frame's row-end points (NavCommand::row_end_points), when one
   /// lies within half the distance between neighbouring true ends (turn_row_end_points: those
