@@ -9,22 +9,6 @@
 
 namespace rownav::navigate {
 
-namespace {
-
-/// Both followed rows tracked from beside the robot (x_min <= 0): the robot is still between
-/// rows (past a real row end they lie behind it). Sparse trees update a row every few frames
-/// only, so the rows' models, not this frame's fits, decide.
-bool rows_beside(const track::RowTracking& t) {
-  if (t.status != track::TrackStatus::tracking) return false;
-  for (const int i : {t.left, t.right}) {
-    if (i < 0 || i >= static_cast<int>(t.rows.size())) return false;
-    if (!(t.rows[static_cast<std::size_t>(i)].x_min <= 0.0)) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 void NavigatorConfig::validate() const {
   core::check_positive(row_speed, "row_speed");
   core::check_positive(entry_speed, "entry_speed");
@@ -112,7 +96,9 @@ NavOutput Navigator::step(const NavInput& in) {
       break;
     case NavState::exiting:
       ends_.update(in.tracking, in.T_odom_base, in.observation.stamp);
-      if (!withdraw_end(in, out)) exiting(in.T_odom_base, out, in.stamp);
+      if (withdraw_end(in, out)) break;
+      bound_exit(in);
+      exiting(in.T_odom_base, out, in.stamp);
       break;
     case NavState::turning:
     case NavState::headland:
@@ -227,26 +213,16 @@ core::Twist2 Navigator::follow_line(const core::Line2& line, const core::Pose2& 
   return {v, 0.0, std::clamp(w, -1.0, 1.0)};
 }
 
-bool Navigator::withdraw_end(const NavInput& in, NavOutput& out) {
-  if (!config_.withdraw_end || !in.sweep_3d || !rows_beside(in.tracking)) return false;
-  // Arcs along this frame's centre line (the exit's line moves with the tracked rows).
-  const core::Line2& centre = *ends_.centre();
-  const double moved = *ends_.end_arc() - centre.arc(declared_end_);
-  if (!(moved > config_.end_withdraw_reach)) return false;
-  state_ = NavState::in_row;
-  out.reset_end_of_row = true;
-  out.events.push_back({in.stamp, NavEventKind::row_end_withdrawn, order_[leg_],
-                        centre.at(*ends_.end_arc()),
-                        "rows tracked on " + fmt(moved) + " m past the row end: withdrawn"});
-  // This frame still along the exit's line (the ends are updated); the next one is in the row.
-  out.cmd = follow_line(centre, in.T_odom_base, config_.row_speed);
-  return true;
-}
-
 void Navigator::exiting(const core::Pose2& T, NavOutput& out, double stamp) {
   // 003 sec. II-B: leave the row by a fixed distance measured by odometry.
   const core::Line2& centre = *ends_.centre();
-  const double past = centre.arc(T.translation()) - (*ends_.end_arc() + exit_distance_);
+  // The end moves with the tracked rows, by at most end_withdraw_reach past the declared one
+  // unless the rows were seen to run on from it (bound_exit).
+  const double end =
+      exit_rows_run_on_
+          ? *ends_.end_arc()
+          : std::min(*ends_.end_arc(), centre.arc(declared_end_) + config_.end_withdraw_reach);
+  const double past = centre.arc(T.translation()) - (end + exit_distance_);
   const GateVerdict gate =
       past < 0.0 ? GateVerdict::wait : exit_verdict(place_, past, config_.place_gate);
   if (gate == GateVerdict::wait) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <vector>
 
 #include "rownav/navigate/navigator.hpp"
 
@@ -24,6 +25,16 @@ bool reached_rows(const track::RowTracking& t, double reach) {
   return !any;
 }
 
+/// The x of this frame's returns beyond x = from (base frame) within `across` of a row's line.
+void returns_along(const track::TrackedRow& row, std::span<const Eigen::Vector2f> pts, double from,
+                   double across, std::vector<double>& xs) {
+  xs.clear();
+  for (const auto& p : pts) {
+    const Eigen::Vector2d q = p.cast<double>();
+    if (q.x() > from && std::abs(row.line_base.signed_distance(q)) <= across) xs.push_back(q.x());
+  }
+}
+
 /// Whether a followed row goes on past x = from (base frame): the returns within `across` of
 /// its line span more than `length` along it beyond from (a ridge or a weed that hid the rows
 /// leaves them there; clutter across the headland crosses the line in a point or two). Without a
@@ -31,19 +42,33 @@ bool reached_rows(const track::RowTracking& t, double reach) {
 bool row_goes_on(const track::RowTracking& t, std::span<const Eigen::Vector2f> pts, double from,
                  double across, double length) {
   bool any = false;
+  std::vector<double> xs;
   for (const int i : {t.left, t.right}) {
     if (i < 0 || i >= static_cast<int>(t.rows.size())) continue;
     any = true;
-    const core::Line2& line = t.rows[static_cast<std::size_t>(i)].line_base;
-    double lo = 1e300, hi = -1e300;
-    for (const auto& p : pts) {
-      const Eigen::Vector2d q = p.cast<double>();
-      if (q.x() <= from || std::abs(line.signed_distance(q)) > across) continue;
-      lo = std::min(lo, q.x()), hi = std::max(hi, q.x());
-    }
-    if (hi - lo > length) return true;
+    returns_along(t.rows[static_cast<std::size_t>(i)], pts, from, across, xs);
+    const auto [lo, hi] = std::minmax_element(xs.begin(), xs.end());
+    if (lo != xs.end() && *hi - *lo > length) return true;
   }
   return !any;  // no followed row left to look along: cannot tell, it may go on
+}
+
+/// Whether a followed row's returns beyond x = from (base frame), within `across` of its line,
+/// fill more than `length` of it, counted in bins `across` long: a row that runs on. A few
+/// returns of one ring on a bump stretch a row model's extent as far as a row would, but fill
+/// one or two bins (zoo:1:11). Without a followed row: false.
+bool row_runs_on(const track::RowTracking& t, std::span<const Eigen::Vector2f> pts, double from,
+                 double across, double length) {
+  std::vector<double> xs;
+  for (const int i : {t.left, t.right}) {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) continue;
+    returns_along(t.rows[static_cast<std::size_t>(i)], pts, from, across, xs);
+    for (double& x : xs) x = std::floor((x - from) / across);  // the bin of each return
+    std::sort(xs.begin(), xs.end());
+    const auto filled = std::unique(xs.begin(), xs.end()) - xs.begin();
+    if (double(filled) * across > length) return true;
+  }
+  return false;
 }
 
 /// [m] free width between the followed rows' inner canopy edges; nullopt without both rows.
@@ -52,6 +77,18 @@ std::optional<double> clear_width(const track::RowTracking& t) {
   if (!f) return std::nullopt;
   const double w = f->left_face - f->right_face;
   return std::isfinite(w) ? std::optional<double>(w) : std::nullopt;
+}
+
+/// Both followed rows tracked from beside the robot (x_min <= 0): the robot is still between
+/// rows (past a real row end they lie behind it). Sparse trees update a row every few frames
+/// only, so the rows' models, not this frame's fits, decide.
+bool rows_beside(const track::RowTracking& t) {
+  if (t.status != track::TrackStatus::tracking) return false;
+  for (const int i : {t.left, t.right}) {
+    if (i < 0 || i >= static_cast<int>(t.rows.size())) return false;
+    if (!(t.rows[static_cast<std::size_t>(i)].x_min <= 0.0)) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -147,6 +184,7 @@ void Navigator::start_exit(const NavInput& in, NavOutput& out, const std::string
   }
   const double end = *ends_.end_arc();
   declared_end_ = centre.at(end);
+  exit_rows_run_on_ = false;
   const double left = end - centre.arc(in.T_odom_base.translation()) + exit_distance_;
   exit_effort_ = StateEffort{std::max(0.0, left), std::max(0.0, left) / config_.row_speed};
   out.events.push_back(
@@ -162,6 +200,45 @@ double Navigator::exit_distance(const NavInput& in) const {
     if (std::isfinite(h)) canopy = std::max(canopy, h);
   }
   return std::max(config_.exit_distance, canopy + 0.5 * in.robot.width + config_.exit_clearance);
+}
+
+bool Navigator::withdraw_end(const NavInput& in, NavOutput& out) {
+  if (!config_.withdraw_end || !in.sweep_3d || !rows_beside(in.tracking)) return false;
+  // Arcs along this frame's centre line (the exit's line moves with the tracked rows).
+  const core::Line2& centre = *ends_.centre();
+  const double moved = *ends_.end_arc() - centre.arc(declared_end_);
+  if (!(moved > config_.end_withdraw_reach)) return false;
+  // ...and the rows' own returns go on past the declared end, not a few returns of one ring: on
+  // a 7.6 deg uphill headland, five ground returns 0.22 m above the estimated ground 4.8-5.0 m
+  // ahead stretched both row models to 5 m and withdrew a right end (zoo:1:11, BENCHMARK.md).
+  const auto& settle = config_.row_end_estimate;
+  const double end_x = (in.T_odom_base.inverse() * declared_end_).x();
+  if (!row_runs_on(in.tracking, in.points_base, end_x + settle.settle_tolerance,
+                   settle.settle_tolerance, settle.settle_distance))
+    return false;
+  state_ = NavState::in_row;
+  out.reset_end_of_row = true;
+  out.events.push_back({in.stamp, NavEventKind::row_end_withdrawn, order_[leg_],
+                        centre.at(*ends_.end_arc()),
+                        "rows tracked on " + fmt(moved) + " m past the row end: withdrawn"});
+  // This frame still along the exit's line (the ends are updated); the next one is in the row.
+  out.cmd = follow_line(centre, in.T_odom_base, config_.row_speed);
+  return true;
+}
+
+void Navigator::bound_exit(const NavInput& in) {
+  // Once a followed row's returns were seen to run on past the declared end during this exit
+  // (a row crop's blind frames ended a row that goes on), the exit follows the rows as before:
+  // safe-stopped by its budget, not turned into the crop (the zoo's row crops crushed 27 -> 192
+  // plants when the bound held there too). Otherwise the rows ended there, and a row end that
+  // moves farther than end_withdraw_reach past it was stretched by a few stray returns (zoo:1:11:
+  // an uphill headland; the exit followed them until its budget ran out): the exit ends past the
+  // declared end + that reach.
+  const auto& settle = config_.row_end_estimate;
+  const double end_x = (in.T_odom_base.inverse() * declared_end_).x();
+  exit_rows_run_on_ =
+      exit_rows_run_on_ || row_runs_on(in.tracking, in.points_base, end_x + settle.settle_tolerance,
+                                       settle.settle_tolerance, settle.settle_distance);
 }
 
 }  // namespace rownav::navigate

@@ -118,17 +118,23 @@ struct NavigatorConfig {
   /// row_end_estimate.settle_distance (issue 11, rownav)
   double lost_rows_end_reach = 5.0;
   /// Exiting: both followed rows still tracked from beside the robot, their end (the row-end
-  /// estimate) more than end_withdraw_reach past the declared one, withdraw it (back in the row,
-  /// the end-of-row detector re-armed). A gap between trees, a blind frame (a small robot pitching
-  /// on a bump) or a short-sighted moment ended the rows; rows that go on beyond the end say so.
-  /// Off, the exit followed the end ahead until its time budget ran out (issue 10: 5 of the
-  /// zoo's orchards stopped `budget_exceeded` in `exiting`; rownav). 3D sweeps only: a planar
-  /// scan's rows run on past a real row end along whatever stands in its plane beyond it (zoo:7:5
-  /// on an LMS1xx: 3.4-5.2 m past both row ends; the end of row has its own shadow and blindness
-  /// tests for planar scans)
+  /// estimate) more than end_withdraw_reach past the declared one, and this frame's returns along
+  /// a followed row filling more than row_end_estimate.settle_distance of it past that end (in
+  /// bins of settle_tolerance, within settle_tolerance of the row's line: not a few returns of
+  /// one ring on a bump; zoo:1:11),
+  /// withdraw it (back in the row, the end-of-row detector re-armed). A gap between trees, a blind
+  /// frame (a small robot pitching on a bump) or a short-sighted moment ended the rows; rows that
+  /// go on beyond the end say so. Off, the exit followed the end ahead until its time budget ran
+  /// out (issue 10: 5 of the zoo's orchards stopped `budget_exceeded` in `exiting`; rownav). 3D
+  /// sweeps only: a planar scan's rows run on past a real row end along whatever stands in its
+  /// plane beyond it (zoo:7:5 on an LMS1xx: 3.4-5.2 m past both row ends; the end of row has its
+  /// own shadow and blindness tests for planar scans)
   bool withdraw_end = true;
   /// [m] see withdraw_end. 0: the end-of-row detector's extent_distance, the reach within which
-  /// the followed rows' ends declare a row end (the Navigator's `end_of_row`) (rownav)
+  /// the followed rows' ends declare a row end (the Navigator's `end_of_row`). Also how far the
+  /// row end may move past the declared one while exiting without being withdrawn: the exit ends
+  /// exit distance past the nearer of the two (zoo:1:11: row models stretched by a few returns
+  /// in an uphill headland pushed the exit on until its budget ran out) (rownav)
   double end_withdraw_reach = 0.0;
   /// [m] a mission starts in the headland before its first corridor: the end of row is armed
   /// only once a followed row's support begins within this distance ahead of the base (the robot
@@ -295,6 +301,9 @@ class Navigator {
   void exiting(const core::Pose2& T, NavOutput& out, double stamp);
   /// exiting -> in_row when the followed rows go on beyond the declared end (withdraw_end).
   bool withdraw_end(const NavInput& in, NavOutput& out);
+  /// Exiting, each frame: whether a followed row's returns run on past the declared end
+  /// (exit_rows_run_on_); until they do, the exit ends at most end_withdraw_reach past it.
+  void bound_exit(const NavInput& in);
   void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   static std::string fmt(double v);
@@ -320,6 +329,7 @@ class Navigator {
   double end_box_near_ = 0.0;
   double exit_distance_ = 0.0;  // [m] this row's exit: exit_distance or the canopy's reach
   Eigen::Vector2d declared_end_ = Eigen::Vector2d::Zero();  // [m] odom: start_exit's row end
+  bool exit_rows_run_on_ = false;  // this exit saw the rows run on past declared_end_ (bound_exit)
   NavState state_ = NavState::in_row;
   StopReason reason_ = StopReason::none;
   bool at_rows_ = false;      // the end of row is armed (the robot has reached the rows)
