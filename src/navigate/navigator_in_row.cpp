@@ -211,11 +211,7 @@ bool Navigator::withdraw_end(const NavInput& in, NavOutput& out) {
   // ...and the rows' own returns go on past the declared end, not a few returns of one ring: on
   // a 7.6 deg uphill headland, five ground returns 0.22 m above the estimated ground 4.8-5.0 m
   // ahead stretched both row models to 5 m and withdrew a right end (zoo:1:11, BENCHMARK.md).
-  const auto& settle = config_.row_end_estimate;
-  const double end_x = (in.T_odom_base.inverse() * declared_end_).x();
-  if (!row_runs_on(in.tracking, in.points_base, end_x + settle.settle_tolerance,
-                   settle.settle_tolerance, settle.settle_distance))
-    return false;
+  if (!rows_run_on_past_end(in)) return false;
   state_ = NavState::in_row;
   out.reset_end_of_row = true;
   out.events.push_back({in.stamp, NavEventKind::row_end_withdrawn, order_[leg_],
@@ -234,11 +230,14 @@ void Navigator::bound_exit(const NavInput& in) {
   // moves farther than end_withdraw_reach past it was stretched by a few stray returns (zoo:1:11:
   // an uphill headland; the exit followed them until its budget ran out): the exit ends past the
   // declared end + that reach.
+  exit_rows_run_on_ = exit_rows_run_on_ || rows_run_on_past_end(in);
+}
+
+bool Navigator::rows_run_on_past_end(const NavInput& in) const {
   const auto& settle = config_.row_end_estimate;
   const double end_x = (in.T_odom_base.inverse() * declared_end_).x();
-  exit_rows_run_on_ =
-      exit_rows_run_on_ || row_runs_on(in.tracking, in.points_base, end_x + settle.settle_tolerance,
-                                       settle.settle_tolerance, settle.settle_distance);
+  return row_runs_on(in.tracking, in.points_base, end_x + settle.settle_tolerance,
+                     settle.settle_tolerance, settle.settle_distance);
 }
 
 }  // namespace rownav::navigate

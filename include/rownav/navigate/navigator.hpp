@@ -121,14 +121,14 @@ struct NavigatorConfig {
   /// estimate) more than end_withdraw_reach past the declared one, and this frame's returns along
   /// a followed row filling more than row_end_estimate.settle_distance of it past that end (in
   /// bins of settle_tolerance, within settle_tolerance of the row's line: not a few returns of
-  /// one ring on a bump; zoo:1:11),
-  /// withdraw it (back in the row, the end-of-row detector re-armed). A gap between trees, a blind
-  /// frame (a small robot pitching on a bump) or a short-sighted moment ended the rows; rows that
-  /// go on beyond the end say so. Off, the exit followed the end ahead until its time budget ran
-  /// out (issue 10: 5 of the zoo's orchards stopped `budget_exceeded` in `exiting`; rownav). 3D
-  /// sweeps only: a planar scan's rows run on past a real row end along whatever stands in its
-  /// plane beyond it (zoo:7:5 on an LMS1xx: 3.4-5.2 m past both row ends; the end of row has its
-  /// own shadow and blindness tests for planar scans)
+  /// one ring on a bump; zoo:1:11): withdraw it (back in the row, the end-of-row detector
+  /// re-armed). A gap between trees, a blind frame (a small robot pitching on a bump) or a
+  /// short-sighted moment ended the rows; rows that go on beyond the end say so. Off, the exit
+  /// followed the end ahead until its time budget ran out (issue 10: 5 of the zoo's orchards
+  /// stopped `budget_exceeded` in `exiting`; rownav). 3D sweeps only: a planar scan's rows run on
+  /// past a real row end along whatever stands in its plane beyond it (zoo:7:5 on an
+  /// LMS1xx: 3.4-5.2 m past both row ends; the end of row has its own shadow and blindness tests
+  /// for planar scans)
   bool withdraw_end = true;
   /// [m] see withdraw_end. 0: the end-of-row detector's extent_distance, the reach within which
   /// the followed rows' ends declare a row end (the Navigator's `end_of_row`). Also how far the
@@ -304,6 +304,9 @@ class Navigator {
   /// Exiting, each frame: whether a followed row's returns run on past the declared end
   /// (exit_rows_run_on_); until they do, the exit ends at most end_withdraw_reach past it.
   void bound_exit(const NavInput& in);
+  /// This frame's returns along a followed row fill row_end_estimate.settle_distance of it past
+  /// the declared end (withdraw_end, bound_exit).
+  bool rows_run_on_past_end(const NavInput& in) const;
   void turning(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   void entering(const NavInput* in, const core::Pose2& T, NavOutput& out, double stamp);
   static std::string fmt(double v);
